@@ -1,0 +1,92 @@
+"""Open-format persistence: atomic ``.npz`` / JSON writes and checked loads (never pickle)."""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+import zipfile
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+
+class CorruptFileError(ValueError):
+    """A saved file is missing, truncated, not what it claims to be, or lacks required keys."""
+
+
+def _atomic_write(path: Path, write) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            write(fh)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
+    return path
+
+
+def save_npz(path: str | os.PathLike, arrays: Mapping[str, Any], *, compress: bool = True) -> Path:
+    """Write ``arrays`` to ``path`` atomically (a temp file renamed into place; no pickle).
+
+    Object arrays are refused, so the file always loads with ``allow_pickle=False``.
+    """
+    clean = {}
+    for k, v in arrays.items():
+        a = np.asarray(v)
+        if a.dtype == object:
+            raise TypeError(f"array {k!r} has dtype object; store numbers or strings only")
+        clean[k] = a
+    saver = np.savez_compressed if compress else np.savez
+    return _atomic_write(Path(path), lambda fh: saver(fh, **clean))
+
+
+def load_npz(path: str | os.PathLike, required: Iterable[str] = ()) -> dict[str, np.ndarray]:
+    """Load every array of an ``.npz`` file into a dict, with clear errors for bad files."""
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"no such file: {path}")
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            out = {k: data[k] for k in data.files}
+    except (zipfile.BadZipFile, OSError, EOFError, ValueError, KeyError) as exc:
+        raise CorruptFileError(f"{path} is not a readable .npz file ({exc})") from exc
+    missing = [k for k in required if k not in out]
+    if missing:
+        raise CorruptFileError(f"{path} lacks required array(s): {', '.join(missing)}")
+    return out
+
+
+def _json_default(obj: Any) -> Any:
+    if isinstance(obj, np.generic):
+        return obj.item()
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    if isinstance(obj, Path):
+        return str(obj)
+    raise TypeError(f"cannot write {type(obj).__name__} to JSON")
+
+
+def save_json(path: str | os.PathLike, obj: Any) -> Path:
+    """Write ``obj`` as indented JSON, atomically; numpy scalars and arrays are converted."""
+    text = json.dumps(obj, indent=2, default=_json_default, allow_nan=True)
+    return _atomic_write(Path(path), lambda fh: fh.write(text.encode()))
+
+
+def load_json(path: str | os.PathLike) -> Any:
+    """Read a JSON file, raising :class:`CorruptFileError` on malformed content."""
+    path = Path(path)
+    try:
+        return json.loads(path.read_text())
+    except json.JSONDecodeError as exc:
+        raise CorruptFileError(f"{path} is not valid JSON ({exc})") from exc

@@ -1,0 +1,1 @@
+"""Runnable scenarios; each module has ``add_arguments(parser)`` and ``run(args) -> dict``."""
