@@ -36,6 +36,15 @@ def _atomic_write(path: Path, write) -> Path:
     return path
 
 
+def atomic_write_text(path: str | os.PathLike, text: str, *, encoding: str = "utf-8") -> Path:
+    """Write ``text`` to ``path`` atomically: a temp file in the same folder, then ``os.replace``.
+
+    A crash or an exception while writing never leaves a half-written ``path`` behind.
+    """
+    data = text.encode(encoding)
+    return _atomic_write(Path(path), lambda fh: fh.write(data))
+
+
 def save_npz(path: str | os.PathLike, arrays: Mapping[str, Any], *, compress: bool = True) -> Path:
     """Write ``arrays`` to ``path`` atomically (a temp file renamed into place; no pickle).
 

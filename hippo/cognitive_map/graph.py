@@ -1,0 +1,543 @@
+"""The transition graph: HIREL's cognitive map of *transitions* between states.
+
+HIREL (Hirel et al., sec. II, "The cognitive map forms a topological representation of the
+environment by linking subsequent transitions") plans over transitions ``A→B`` rather than over
+places. Each node of :class:`TransitionGraph` is one transition, keyed by the tuple ``(a, b)`` of
+integer state ids (the same key as :mod:`hippo.timing`), with the attributes
+
+``action``     ``"move"`` or ``"wait"`` (HIREL's checkpoints: the action of a transition learned
+               while the robot stood still is to wait, sec. III-B);
+``heading``    circular mean of the headings measured by path integration (radians, in (-π, π]);
+``heading_r``  mean resultant length of those headings (1 = always the same heading, 0 = none);
+``distance``   mean travelled distance (cm);
+``delay``      mean learned delay (s) between entering ``a`` and entering ``b``;
+``count``      how often the transition was taken (``n_wait`` of those as a wait, ``n_delay`` with a
+               delay measurement);
+``strength``   1 when last used, multiplied by the factor of :meth:`TransitionGraph.decay`;
+``last_used``  time of the last use, if the caller gives times.
+
+Edges link ``A→B`` to every ``B→C``: the graph is the *line graph* of the state graph, so an edge
+exists exactly when the end state of one transition is the start state of the other. The edge set
+is maintained by the graph itself (adding ``B→C`` links every known ``A→B`` to it, and links it to
+every known ``C→D``), which is what lets :mod:`hippo.cognitive_map.planner` propagate on the much
+smaller state graph.
+
+Merging a repeat updates running means: the distance, the delay, and the heading as an exact
+circular mean. With ``S_n = Σ (cos θ_k, sin θ_k) = n R_n (cos h_n, sin h_n)`` (``h`` = heading,
+``R`` = ``heading_r``), a new heading ``θ`` gives ``S_{n+1} = S_n + (cos θ, sin θ)``,
+``h_{n+1} = atan2(S_{n+1})``, ``R_{n+1} = |S_{n+1}| / (n+1)`` — the same as the circular mean of all
+samples, without storing them. The kind (move/wait) is the majority kind (a tie keeps ``move``).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import operator
+import os
+import xml.etree.ElementTree as ET
+from collections.abc import Callable, Hashable, Iterable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Literal
+
+import networkx as nx
+import numpy as np
+
+from hippo._checks import check_finite, check_positive, check_range
+from hippo.io import CorruptFileError, atomic_write_text
+
+Transition = tuple[int, int]
+"""A transition key: ``(a, b)``, the ids of the state left and the state entered."""
+
+WAIT = "wait"
+MOVE = "move"
+GRAPHML_FORMAT = "hippo.cognitive_map.TransitionGraph/1"
+
+_FLOAT_ATTRS = ("heading", "heading_r", "distance", "delay", "strength", "last_used")
+_INT_ATTRS = ("a", "b", "count", "n_wait", "n_delay")
+_STR_ATTRS = ("action",)
+NODE_ATTRS = _INT_ATTRS + _STR_ATTRS + _FLOAT_ATTRS
+"""Every attribute a transition node carries (``None`` allowed for the float ones but strength)."""
+
+
+@dataclass(frozen=True)
+class Action:
+    """The motor action of a transition: move along ``heading`` (rad) for ``distance`` (cm) or wait.
+
+    Build with :meth:`move` or :meth:`wait`.
+    """
+
+    kind: Literal["move", "wait"]
+    heading: float | None = None
+    distance: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.kind not in (MOVE, WAIT):
+            raise ValueError(f"action kind must be 'move' or 'wait', got {self.kind!r}")
+        if self.kind == MOVE:
+            if self.heading is None or self.distance is None:
+                raise ValueError("a move action needs both a heading (rad) and a distance (cm)")
+            check_finite("heading", self.heading)
+            check_positive("distance", self.distance, allow_zero=True)
+
+    @classmethod
+    def move(cls, heading: float, distance: float) -> Action:
+        """A move along ``heading`` (rad; stored wrapped to (-π, π]) for ``distance`` cm."""
+        return cls(MOVE, _wrap(float(heading)), float(distance))
+
+    @classmethod
+    def wait(cls) -> Action:
+        """Stand still (HIREL's checkpoint transitions)."""
+        return cls(WAIT)
+
+    @property
+    def is_wait(self) -> bool:
+        return self.kind == WAIT
+
+
+ActionLike = Action | Literal["wait"] | tuple[float, float]
+
+
+def _wrap(angle: float) -> float:
+    """Wrap an angle to (-π, π]."""
+    a = math.remainder(angle, 2.0 * math.pi)
+    return math.pi if a == -math.pi else a
+
+
+def _as_action(action: ActionLike) -> Action:
+    if isinstance(action, Action):
+        return action
+    if isinstance(action, str):
+        if action == WAIT:
+            return Action.wait()
+        raise ValueError(f"action must be an Action, 'wait' or (heading, distance), got {action!r}")
+    try:
+        heading, distance = action
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"action must be an Action, 'wait' or (heading, distance), got {action!r}"
+        ) from None
+    return Action.move(heading, distance)
+
+
+def state_id(value: Any, name: str = "state") -> int:
+    """Return ``value`` as an ``int`` state id, or raise ``ValueError`` (no bools, no floats)."""
+    if isinstance(value, bool | np.bool_):
+        raise ValueError(f"{name} must be an integer state id, got {value!r}")
+    try:
+        return operator.index(value)
+    except TypeError:
+        raise ValueError(f"{name} must be an integer state id, got {value!r}") from None
+
+
+def as_transition(t: Any) -> Transition:
+    """Return ``t`` as an ``(a, b)`` tuple of ints, or raise ``ValueError``."""
+    try:
+        a, b = t
+    except (TypeError, ValueError):
+        raise ValueError(f"a transition is a pair (a, b) of state ids, got {t!r}") from None
+    return state_id(a, "transition start state"), state_id(b, "transition end state")
+
+
+def _node_id(t: Transition) -> str:
+    return f"{t[0]}->{t[1]}"
+
+
+class TransitionGraph:
+    """HIREL's cognitive map: a networkx ``DiGraph`` of transitions ``(a, b)`` linked ``A→B → B→C``.
+
+    Mutate it only through its methods (they keep the edges and the version counters right);
+    :attr:`nx` is a read-only view for analysis and drawing.
+
+    ``version`` grows on every change; ``structure_version`` only when transitions are added or
+    removed (the planner's cached sparse matrices depend on the structure only).
+    """
+
+    def __init__(self) -> None:
+        self._g = nx.DiGraph()
+        self._out: dict[int, dict[Transition, None]] = {}
+        self._in: dict[int, dict[Transition, None]] = {}
+        self._states: dict[int, tuple[float, float] | None] = {}
+        self.version = 0
+        self.structure_version = 0
+        self._cache: dict[Hashable, Any] = {}
+        self._cache_version = -1
+
+    # ------------------------------------------------------------------ queries
+    def __len__(self) -> int:
+        return self._g.number_of_nodes()
+
+    def __contains__(self, t: object) -> bool:
+        try:
+            return as_transition(t) in self._g
+        except ValueError:
+            return False
+
+    def __iter__(self) -> Iterator[Transition]:
+        return iter(self._g)
+
+    def __repr__(self) -> str:
+        return (f"TransitionGraph({len(self)} transitions, {self._g.number_of_edges()} links, "
+                f"{len(self._states)} states)")
+
+    @property
+    def nx(self) -> nx.DiGraph:
+        """A read-only view of the underlying networkx ``DiGraph`` (nodes = transitions)."""
+        return self._g.copy(as_view=True)
+
+    @property
+    def transitions(self) -> list[Transition]:
+        """All transitions, in insertion order."""
+        return list(self._g)
+
+    @property
+    def n_links(self) -> int:
+        """Number of edges ``A→B → B→C``."""
+        return self._g.number_of_edges()
+
+    @property
+    def states(self) -> frozenset[int]:
+        """Every state known: ends of transitions, plus states added with :meth:`add_state`.
+
+        Forgetting a transition does not forget its states (the place is still known).
+        """
+        return frozenset(self._states)
+
+    def has_state(self, state: int) -> bool:
+        return state in self._states
+
+    def _check_state(self, state: Any) -> int:
+        s = state_id(state)
+        if s not in self._states:
+            raise KeyError(f"unknown state {s}: the map knows {len(self._states)} state(s)")
+        return s
+
+    def outgoing(self, state: int) -> list[Transition]:
+        """Transitions ``(state, x)``, in insertion order; ``KeyError`` for an unknown state."""
+        s = self._check_state(state)
+        return list(self._out.get(s, ()))
+
+    def incoming(self, state: int) -> list[Transition]:
+        """Transitions ``(x, state)``, in insertion order; ``KeyError`` for an unknown state."""
+        s = self._check_state(state)
+        return list(self._in.get(s, ()))
+
+    def successors(self, t: Transition) -> list[Transition]:
+        """The transitions that can follow ``t`` (those starting where ``t`` ends)."""
+        return list(self._g.successors(self._check_transition(t)))
+
+    def predecessors(self, t: Transition) -> list[Transition]:
+        return list(self._g.predecessors(self._check_transition(t)))
+
+    def _check_transition(self, t: Any) -> Transition:
+        key = as_transition(t)
+        if key not in self._g:
+            raise KeyError(f"unknown transition {key[0]}->{key[1]}")
+        return key
+
+    def attributes(self, t: Transition) -> dict[str, Any]:
+        """A copy of the attributes of transition ``t`` (see the module docstring)."""
+        return dict(self._g.nodes[self._check_transition(t)])
+
+    def action(self, t: Transition) -> Action:
+        """The motor action of ``t``: :meth:`Action.wait`, or a move with mean heading/distance."""
+        d = self._g.nodes[self._check_transition(t)]
+        if d["action"] == WAIT:
+            return Action.wait()
+        return Action(MOVE, d["heading"], d["distance"])
+
+    def delay(self, t: Transition) -> float | None:
+        """The mean learned delay (s) of ``t``, or ``None`` if never measured."""
+        return self._g.nodes[self._check_transition(t)]["delay"]
+
+    def count(self, t: Transition) -> int:
+        return self._g.nodes[self._check_transition(t)]["count"]
+
+    # --------------------------------------------------------------- positions
+    def add_state(self, state: int, position: tuple[float, float] | None = None) -> int:
+        """Declare a state (e.g. the current one before any transition), maybe with a position."""
+        s = state_id(state)
+        if s not in self._states:
+            self._states[s] = None
+            self.version += 1
+        if position is not None:
+            self.set_position(s, position)
+        return s
+
+    def set_position(self, state: int, position: tuple[float, float] | None) -> None:
+        """Store an (x, y) estimate of ``state`` (e.g. from path integration), for figures only."""
+        s = state_id(state)
+        if position is None:
+            pos = None
+        else:
+            arr = check_finite(f"position of state {s}", position).ravel()
+            if arr.shape != (2,):
+                raise ValueError(f"position of state {s} must be (x, y), got {position!r}")
+            pos = (float(arr[0]), float(arr[1]))
+        self._states[s] = pos
+        self.version += 1
+
+    def position(self, state: int) -> tuple[float, float] | None:
+        return self._states[self._check_state(state)]
+
+    @property
+    def positions(self) -> dict[int, tuple[float, float]]:
+        """The states that have a position, with it."""
+        return {s: p for s, p in self._states.items() if p is not None}
+
+    # ---------------------------------------------------------------- mutation
+    def add_transition(self, a: int, b: int, action: ActionLike, delay: float | None = None,
+                       *, time: float | None = None) -> Transition:
+        """Add transition ``a→b`` or merge a repeat of it; returns the key ``(a, b)``.
+
+        ``action`` is an :class:`Action`, ``"wait"`` or ``(heading_rad, distance_cm)``; ``delay``
+        (s) the measured time from entering ``a`` to entering ``b``; ``time`` the current time
+        (stored as ``last_used``). A repeat updates the running means (circular mean for the
+        heading), the counts, and resets ``strength`` to 1. A new transition is linked to every
+        ``x→a`` and every ``b→y`` already known (so ``structure_version`` grows).
+        """
+        t = (state_id(a, "a"), state_id(b, "b"))
+        act = _as_action(action)
+        if delay is not None:
+            delay = check_positive("delay", delay, allow_zero=True)
+        if time is not None:
+            time = float(check_finite("time", time))
+        node = self._g.nodes.get(t)
+        if node is None:
+            attrs = {
+                "a": t[0], "b": t[1], "action": act.kind,
+                "heading": None, "heading_r": None, "distance": None,
+                "delay": delay, "count": 1, "n_wait": int(act.is_wait),
+                "n_delay": int(delay is not None), "strength": 1.0, "last_used": time,
+            }
+            if not act.is_wait:
+                attrs.update(heading=act.heading, heading_r=1.0, distance=act.distance)
+            self._insert(t, attrs)
+        else:
+            self._merge(node, act, delay, time)
+            self.version += 1
+        return t
+
+    def _merge(self, d: dict[str, Any], act: Action, delay: float | None,
+               time: float | None) -> None:
+        n_move = d["count"] - d["n_wait"]
+        if act.is_wait:
+            d["n_wait"] += 1
+        else:
+            if n_move == 0 or d["heading"] is None:
+                d["heading"], d["heading_r"], d["distance"] = act.heading, 1.0, act.distance
+            else:
+                r = d["heading_r"] * n_move
+                sx = r * math.cos(d["heading"]) + math.cos(act.heading)
+                sy = r * math.sin(d["heading"]) + math.sin(act.heading)
+                d["heading"] = _wrap(math.atan2(sy, sx))
+                d["heading_r"] = min(1.0, math.hypot(sx, sy) / (n_move + 1))
+                d["distance"] += (act.distance - d["distance"]) / (n_move + 1)
+        d["count"] += 1
+        d["action"] = WAIT if 2 * d["n_wait"] > d["count"] else MOVE
+        if delay is not None:
+            d["n_delay"] += 1
+            d["delay"] = delay if d["delay"] is None else (
+                d["delay"] + (delay - d["delay"]) / d["n_delay"])
+        d["strength"] = 1.0
+        if time is not None:
+            d["last_used"] = time
+
+    def _insert(self, t: Transition, attrs: dict[str, Any]) -> None:
+        a, b = t
+        self._g.add_node(t, **attrs)
+        for s in (a, b):
+            self._states.setdefault(s, None)
+        # A->B follows every X->A and precedes every B->Y (a self-loop a==b links to itself).
+        self._out.setdefault(a, {})[t] = None
+        self._in.setdefault(b, {})[t] = None
+        self._g.add_edges_from((p, t) for p in self._in.get(a, ()))
+        self._g.add_edges_from((t, s) for s in self._out.get(b, ()))
+        self.version += 1
+        self.structure_version += 1
+
+    def mark_used(self, t: Transition, *, time: float | None = None) -> None:
+        """Reset the strength of ``t`` to 1 (and ``last_used``) without counting a new sample."""
+        d = self._g.nodes[self._check_transition(t)]
+        d["strength"] = 1.0
+        if time is not None:
+            d["last_used"] = float(check_finite("time", time))
+        self.version += 1
+
+    def remove_transition(self, t: Transition) -> None:
+        """Forget transition ``t`` and its links (its states stay known)."""
+        key = self._check_transition(t)
+        self._g.remove_node(key)
+        del self._out[key[0]][key]
+        del self._in[key[1]][key]
+        self.version += 1
+        self.structure_version += 1
+
+    def decay(self, factor: float, *, threshold: float = 0.05) -> list[Transition]:
+        """Forget unused transitions: ``strength *= factor``, drop those below ``threshold``.
+
+        Use (:meth:`add_transition`, :meth:`mark_used`) resets the strength to 1, so after ``k``
+        calls without use a transition has strength ``factor**k``. Returns the removed transitions.
+        """
+        factor = check_range("decay factor", factor, 0.0, 1.0)
+        threshold = check_range("decay threshold", threshold, 0.0, 1.0)
+        removed = []
+        for t, d in self._g.nodes(data=True):
+            d["strength"] *= factor
+            if d["strength"] < threshold:
+                removed.append(t)
+        for t in removed:
+            self.remove_transition(t)
+        self.version += 1
+        return removed
+
+    # ------------------------------------------------------------------- cache
+    def cached(self, key: Hashable, build: Callable[[], Any]) -> Any:
+        """Memoise ``build()`` under ``key`` until the structure changes (used by the planner)."""
+        if self._cache_version != self.structure_version:
+            self._cache.clear()
+            self._cache_version = self.structure_version
+        if key not in self._cache:
+            self._cache[key] = build()
+        return self._cache[key]
+
+    def index(self) -> TransitionIndex:
+        """Arrays describing the structure (cached until the structure changes)."""
+        return self.cached("index", lambda: TransitionIndex.build(self))
+
+    # ----------------------------------------------------------------- GraphML
+    def to_graphml(self, path: str | os.PathLike) -> Path:
+        """Write the map to a GraphML file atomically (temp file + rename; never half-written).
+
+        Node ids are ``"a->b"`` strings; every node attribute is written with its type, ``None``
+        values are left out (GraphML has no null) and restored as ``None`` on reading. State
+        positions go into the graph attribute ``states`` as JSON.
+        """
+        h = nx.DiGraph()
+        h.graph["format"] = GRAPHML_FORMAT
+        h.graph["states"] = json.dumps(
+            [[s, None, None] if p is None else [s, p[0], p[1]] for s, p in self._states.items()])
+        for t, d in self._g.nodes(data=True):
+            attrs: dict[str, Any] = {}
+            for k in _INT_ATTRS:
+                attrs[k] = int(d[k])
+            attrs["action"] = str(d["action"])
+            for k in _FLOAT_ATTRS:
+                if d[k] is not None:
+                    attrs[k] = float(d[k])
+            h.add_node(_node_id(t), **attrs)
+        h.add_edges_from((_node_id(u), _node_id(v)) for u, v in self._g.edges)
+        text = "\n".join(nx.generate_graphml(h)) + "\n"
+        return atomic_write_text(path, text)
+
+    @classmethod
+    def from_graphml(cls, path: str | os.PathLike) -> TransitionGraph:
+        """Read a map written by :meth:`to_graphml`; :class:`~hippo.io.CorruptFileError` if bad."""
+        path = Path(path)
+        if not path.exists():
+            raise FileNotFoundError(f"no such file: {path}")
+        try:
+            h = nx.read_graphml(path, node_type=str)
+        except (ET.ParseError, nx.NetworkXError, ValueError, KeyError) as exc:
+            raise CorruptFileError(f"{path} is not a readable GraphML file ({exc})") from exc
+        if h.graph.get("format") != GRAPHML_FORMAT:
+            raise CorruptFileError(
+                f"{path} is not a hippo transition graph (format {h.graph.get('format')!r})")
+        g = cls()
+        try:
+            for s, x, y in json.loads(h.graph.get("states", "[]")):
+                g._states[state_id(s)] = None if x is None else (float(x), float(y))
+            for nid, d in h.nodes(data=True):
+                attrs: dict[str, Any] = {k: int(d[k]) for k in _INT_ATTRS}
+                attrs["action"] = str(d["action"])
+                if attrs["action"] not in (MOVE, WAIT):
+                    raise ValueError(f"bad action {attrs['action']!r}")
+                for k in _FLOAT_ATTRS:
+                    attrs[k] = float(d[k]) if k in d else None
+                if attrs["strength"] is None:
+                    raise KeyError("strength")
+                t = (attrs["a"], attrs["b"])
+                if _node_id(t) != nid:
+                    raise ValueError(f"node id {nid!r} does not match a={t[0]}, b={t[1]}")
+                g._insert(t, attrs)
+        except (KeyError, ValueError, TypeError, json.JSONDecodeError) as exc:
+            raise CorruptFileError(f"{path}: bad transition graph content ({exc!r})") from exc
+        file_edges = set(h.edges)
+        own_edges = {(_node_id(u), _node_id(v)) for u, v in g._g.edges}
+        if file_edges != own_edges:
+            raise CorruptFileError(
+                f"{path}: links differ from the A->B -> B->C rule "
+                f"({len(file_edges - own_edges)} extra, {len(own_edges - file_edges)} missing)")
+        return g
+
+    def same_as(self, other: TransitionGraph) -> bool:
+        """True when both maps hold the same transitions, links, attributes and states."""
+        return (self._states == other._states
+                and dict(self._g.nodes(data=True)) == dict(other._g.nodes(data=True))
+                and set(self._g.edges) == set(other._g.edges))
+
+
+@dataclass(frozen=True)
+class TransitionIndex:
+    """Array form of the structure: transition ``i`` is ``nodes[i] = (a[i], b[i])``.
+
+    ``states`` are the state ids met in transitions (sorted); ``a_s[i]`` / ``b_s[i]`` the positions
+    of ``a[i]`` / ``b[i]`` in ``states``.
+    """
+
+    nodes: tuple[Transition, ...]
+    pos: dict[Transition, int]
+    a: np.ndarray
+    b: np.ndarray
+    states: np.ndarray
+    a_s: np.ndarray
+    b_s: np.ndarray
+
+    @classmethod
+    def build(cls, graph: TransitionGraph) -> TransitionIndex:
+        nodes = tuple(graph._g)
+        n = len(nodes)
+        ab = np.fromiter((x for t in nodes for x in t), dtype=np.int64, count=2 * n).reshape(n, 2)
+        states, inv = np.unique(ab.ravel(), return_inverse=True)
+        inv = inv.reshape(n, 2)
+        return cls(nodes, {t: i for i, t in enumerate(nodes)}, ab[:, 0].copy(), ab[:, 1].copy(),
+                   states, inv[:, 0].copy(), inv[:, 1].copy())
+
+    def __len__(self) -> int:
+        return len(self.nodes)
+
+
+def random_transition_graph(n_states: int, n_transitions: int, rng: np.random.Generator,
+                            *, allow_self: bool = False) -> TransitionGraph:
+    """A random map of ``n_transitions`` distinct transitions over ``n_states`` states (for tests).
+
+    Actions are random moves; a few are waits.
+    """
+    if n_states < 1:
+        raise ValueError(f"n_states must be >= 1, got {n_states}")
+    max_t = n_states * n_states if allow_self else n_states * (n_states - 1)
+    if not 0 <= n_transitions <= max_t:
+        raise ValueError(f"n_transitions must lie in [0, {max_t}] for {n_states} states")
+    g = TransitionGraph()
+    seen: set[Transition] = set()
+    while len(seen) < n_transitions:
+        a, b = (int(x) for x in rng.integers(0, n_states, size=2))
+        if (a == b and not allow_self) or (a, b) in seen:
+            continue
+        seen.add((a, b))
+        act: ActionLike = WAIT if rng.random() < 0.1 else (
+            float(rng.uniform(-math.pi, math.pi)), float(rng.uniform(1, 50)))
+        g.add_transition(a, b, act, float(rng.uniform(0.5, 10)))
+    return g
+
+
+def transitions_from_state_edges(edges: Iterable[tuple[int, int]], *,
+                                 both_ways: bool = True) -> TransitionGraph:
+    """A map with one move transition per state edge (and its reverse if ``both_ways``)."""
+    g = TransitionGraph()
+    for a, b in edges:
+        g.add_transition(a, b, (0.0, 1.0))
+        if both_ways:
+            g.add_transition(b, a, (math.pi, 1.0))
+    return g

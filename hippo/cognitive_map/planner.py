@@ -1,0 +1,424 @@
+"""Drive propagation through the transition map and transition selection (HIREL sec. II).
+
+HIREL: "The drive activity can then be propagated through the map (with synaptic weights < 1)
+using a max operator (in a fashion similar to the Bellman-Ford algorithm). The gradient of
+activity in the map gives information about the distance to rewarding transitions." At the
+current place the transition with the highest activity wins the competition, with a little noise;
+"If no drive is active then there is no activity in the cognitive map [...] A small amount of
+noise in the action selection system will lead to the selection of a random direction", which is
+exploration.
+
+**Propagation.** With drive input ``I(n) = max_d level(d) · W_{d,n}`` (0 for a drive below the
+exploration threshold), the activity is the fixed point of the max-product sweep::
+
+    act(n) = max( I(n), w · max_{s ∈ successors(n)} act(s) ),     0 < w < 1
+
+i.e. ``act(n) = max_g I(g) · w^{h(n, g)}`` over goal transitions ``g`` reachable from ``n`` in
+``h`` hops (``h = 0`` for ``g = n``): the strongest drive, discounted by distance, wins; it never
+exceeds the largest drive level, and a transition from which no goal is reachable gets 0.
+
+**Fast form.** Taking ``−log`` turns it into shortest paths: ``cost(n) = −log act(n)``, edges cost
+``L = −log w > 0`` on the reversed graph, and each goal ``g`` starts at ``c_g = −log I(g)``.
+Different start costs are handled by a virtual super-source joined to each goal by an edge of
+cost ``K + c_g`` (``K = 1`` keeps every such edge > 0, since scipy may drop explicit zeros; it is
+subtracted afterwards); one ``scipy.sparse.csgraph.dijkstra`` from the super-source solves it.
+
+Two graphs can carry that Dijkstra:
+
+- ``method="transitions"``: the transition graph itself (nodes = transitions, edges
+  ``A→B → B→C``) — literally the sweep above;
+- ``method="states"`` (default, ~10× faster): because the transition graph is the line graph of
+  the state graph, ``act(a→b) = max(I(a→b), w · V(b))`` with the state value
+  ``V(s) = max_{(s, x)} act(s→x)``, and ``V`` solves the same kind of shortest-path problem on the
+  *state* graph (one edge per transition, instead of one per pair of consecutive transitions).
+
+The sparse matrices are built once per structure change (cached on the graph, keyed by its
+``structure_version``). :func:`propagate_reference` is the pure-Python sweep on the networkx
+graph (Bellman-Ford with a FIFO work list), for tests and the benchmark.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import networkx as nx
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import dijkstra
+
+from hippo._checks import check_finite, check_positive, check_range
+from hippo.cognitive_map.drives import Drives
+from hippo.cognitive_map.graph import Transition, TransitionGraph, TransitionIndex, as_transition
+
+Method = Literal["states", "transitions"]
+_K = 1.0  # offset of the super-source edges (keeps them strictly positive)
+
+
+@dataclass(frozen=True)
+class PlannerParams:
+    """Parameters of :class:`Planner`.
+
+    w:                     propagation weight, ``0 < w < 1`` (activity × w per hop).
+    noise:                 std of the Gaussian noise added to the outgoing activities at a choice,
+                           relative to the best of them (0 = pure winner-take-all; exact ties are
+                           then broken uniformly at random).
+    exploration_threshold: a drive whose level is below this is inactive (no input to the map);
+                           with no active drive reaching the current state, the choice is uniform
+                           over its outgoing transitions (exploration).
+    replan_tolerance:      reuse the last propagation while no drive level moved by more than this
+                           (and neither the map structure nor the goal links changed).
+    method:                ``"states"`` or ``"transitions"`` (see the module docstring).
+    """
+
+    w: float = 0.9
+    noise: float = 0.01
+    exploration_threshold: float = 0.05
+    replan_tolerance: float = 1e-3
+    method: Method = "states"
+
+    def __post_init__(self) -> None:
+        _check_w(self.w)
+        check_positive("PlannerParams.noise", self.noise, allow_zero=True)
+        check_range("PlannerParams.exploration_threshold", self.exploration_threshold, 0.0, 1.0)
+        check_positive("PlannerParams.replan_tolerance", self.replan_tolerance, allow_zero=True)
+        _check_method(self.method)
+
+
+def _check_w(w: float) -> float:
+    return check_range("propagation weight w", w, 0.0, 1.0, closed="neither")
+
+
+def _check_method(method: str) -> str:
+    if method not in ("states", "transitions"):
+        raise ValueError(f"method must be 'states' or 'transitions', got {method!r}")
+    return method
+
+
+@dataclass(frozen=True)
+class Activity:
+    """Result of a propagation: ``values[i]`` is the activity of ``index.nodes[i]``.
+
+    ``inputs`` holds the drive inputs, ``state_values`` (``"states"`` method only, else ``None``)
+    the best outgoing activity of each state in ``index.states``.
+    """
+
+    index: TransitionIndex
+    values: np.ndarray
+    inputs: np.ndarray
+    state_values: np.ndarray | None = None
+
+    def __getitem__(self, t: Transition) -> float:
+        key = as_transition(t)
+        try:
+            return float(self.values[self.index.pos[key]])
+        except KeyError:
+            raise KeyError(f"unknown transition {key[0]}->{key[1]}") from None
+
+    def __len__(self) -> int:
+        return len(self.values)
+
+    def as_dict(self) -> dict[Transition, float]:
+        return dict(zip(self.index.nodes, self.values.tolist(), strict=True))
+
+    def is_goal(self, t: Transition, rtol: float = 1e-9) -> bool:
+        """True when ``t`` gets its activity from its own drive input (a reached goal)."""
+        i = self.index.pos[as_transition(t)]
+        return bool(self.inputs[i] > 0 and self.inputs[i] >= self.values[i] * (1 - rtol))
+
+
+# --------------------------------------------------------------------------- drive input
+def effective_levels(drives: Drives, threshold: float = 0.0) -> dict[str, float]:
+    """Drive levels, with those below ``threshold`` set to 0 (inactive)."""
+    return {n: (v if v >= threshold and v > 0 else 0.0) for n, v in drives.levels.items()}
+
+
+def drive_input(graph: TransitionGraph, drives: Drives, threshold: float = 0.0) -> np.ndarray:
+    """``I(n) = max_d level(d) · W_{d,n}`` for every transition of ``graph`` (index order).
+
+    Drives below ``threshold`` give no input; links to transitions not in the graph are ignored.
+    """
+    idx = graph.index()
+    inputs = np.zeros(len(idx))
+    for name, level in effective_levels(drives, threshold).items():
+        if level <= 0:
+            continue
+        for t, w in drives.links(name).items():
+            i = idx.pos.get(t)
+            if i is not None and level * w > inputs[i]:
+                inputs[i] = level * w
+    return inputs
+
+
+def _input_array(graph: TransitionGraph, inputs: Any) -> np.ndarray:
+    idx = graph.index()
+    if isinstance(inputs, Drives):
+        return drive_input(graph, inputs)
+    if isinstance(inputs, Mapping):
+        arr = np.zeros(len(idx))
+        for t, v in inputs.items():
+            key = as_transition(t)
+            if key not in idx.pos:
+                raise KeyError(f"drive input given for unknown transition {key[0]}->{key[1]}")
+            arr[idx.pos[key]] = v
+    else:
+        arr = np.asarray(inputs, dtype=float)
+        if arr.shape != (len(idx),):
+            raise ValueError(f"drive inputs must have shape ({len(idx)},), got {arr.shape}")
+    check_finite("drive inputs", arr)
+    if arr.size and (arr.min() < 0 or arr.max() > 1):
+        raise ValueError(f"drive inputs must lie in [0, 1], got range [{arr.min()}, {arr.max()}]")
+    return arr
+
+
+# --------------------------------------------------------------------------- sparse structure
+def _csr_pattern(rows: np.ndarray, cols: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """(indptr, indices) of an n×n pattern with entries (rows[k], cols[k]) (no duplicates)."""
+    order = np.lexsort((cols, rows))
+    indices = cols[order].astype(np.int32)
+    indptr = np.zeros(n + 2, dtype=np.int32)  # one spare row for the super-source
+    np.cumsum(np.bincount(rows, minlength=n), out=indptr[1:n + 1])
+    indptr[n + 1] = indptr[n]
+    return indptr, indices
+
+
+def state_pattern(graph: TransitionGraph) -> tuple[np.ndarray, np.ndarray]:
+    """Reversed state graph (edge ``b → a`` per transition ``a→b``), cached per structure."""
+    def build() -> tuple[np.ndarray, np.ndarray]:
+        idx = graph.index()
+        return _csr_pattern(idx.b_s, idx.a_s, len(idx.states))
+    return graph.cached("planner.state_pattern", build)
+
+
+def transition_pattern(graph: TransitionGraph) -> tuple[np.ndarray, np.ndarray]:
+    """Reversed transition graph (edge ``j → i`` when ``i = x→s`` and ``j = s→y``), cached."""
+    def build() -> tuple[np.ndarray, np.ndarray]:
+        idx = graph.index()
+        n, ns = len(idx), len(idx.states)
+        ones = np.ones(n, dtype=np.int8)
+        ar = np.arange(n)
+        starts = sp.csr_array((ones, (ar, idx.a_s)), shape=(n, ns))  # j starts at s
+        ends = sp.csr_array((ones, (idx.b_s, ar)), shape=(ns, n))    # i ends at s
+        rev = (starts @ ends).tocoo()                                # rev[j, i] = 1
+        return _csr_pattern(rev.row.astype(np.int64), rev.col.astype(np.int64), n)
+    return graph.cached("planner.transition_pattern", build)
+
+
+def prepare(graph: TransitionGraph, method: Method = "states") -> None:
+    """Build (and cache) the index and sparse structure ahead of the first propagation."""
+    graph.index()
+    if _check_method(method) == "states":
+        state_pattern(graph)
+    else:
+        transition_pattern(graph)
+
+
+def _dijkstra_from_goals(indptr: np.ndarray, indices: np.ndarray, n: int, edge_cost: float,
+                         goal_nodes: np.ndarray, goal_costs: np.ndarray) -> np.ndarray:
+    """Shortest cost to every node from a super-source with edges ``goal → K + cost``."""
+    # One start cost per goal node: the smallest.
+    order = np.lexsort((goal_costs, goal_nodes))
+    g, c = goal_nodes[order], goal_costs[order]
+    first = np.ones(len(g), dtype=bool)
+    first[1:] = g[1:] != g[:-1]
+    g, c = g[first], c[first]
+    nnz = len(indices)
+    data = np.empty(nnz + len(g))
+    data[:nnz] = edge_cost
+    data[nnz:] = _K + c
+    ptr = indptr.copy()
+    ptr[n + 1] = nnz + len(g)
+    mat = sp.csr_array((data, np.concatenate([indices, g.astype(np.int32)]), ptr),
+                       shape=(n + 1, n + 1))
+    dist = dijkstra(mat, directed=True, indices=n)
+    return dist[:n] - _K
+
+
+def propagate(graph: TransitionGraph, inputs: Any, w: float = 0.9, *,
+              method: Method = "states") -> Activity:
+    """Fixed point of ``act(n) = max(I(n), w · max_{s ∈ succ(n)} act(s))`` over ``graph``.
+
+    ``inputs`` is a :class:`Drives` (all levels count), a mapping transition → input, or an
+    array aligned with ``graph.index().nodes``; inputs lie in [0, 1]. Runs one multi-source
+    Dijkstra on ``−log`` activities (see the module docstring); ``O(E log V)``.
+    """
+    w = _check_w(w)
+    _check_method(method)
+    idx = graph.index()
+    inp = _input_array(graph, inputs)
+    goals = np.flatnonzero(inp > 0)
+    if len(goals) == 0:
+        zeros = np.zeros(len(idx))
+        return Activity(idx, zeros, inp, np.zeros(len(idx.states)) if method == "states" else None)
+    edge_cost = -math.log(w)
+    goal_costs = -np.log(inp[goals])
+    if method == "states":
+        indptr, indices = state_pattern(graph)
+        ns = len(idx.states)
+        cost = _dijkstra_from_goals(indptr, indices, ns, edge_cost, idx.a_s[goals], goal_costs)
+        v = np.exp(-cost)  # inf -> 0
+        values = np.maximum(inp, w * v[idx.b_s])
+        return Activity(idx, values, inp, v)
+    indptr, indices = transition_pattern(graph)
+    cost = _dijkstra_from_goals(indptr, indices, len(idx), edge_cost, goals, goal_costs)
+    values = np.minimum(np.exp(-cost), 1.0)
+    values[goals] = np.maximum(values[goals], inp[goals])
+    return Activity(idx, values, inp)
+
+
+def propagate_reference(graph: TransitionGraph | nx.DiGraph, inputs: Any,
+                        w: float = 0.9) -> dict[Transition, float]:
+    """Pure-Python reference of the same sweep on the networkx graph (Bellman-Ford, FIFO list).
+
+    Starts from ``act = I`` and, whenever ``act(s)`` grows, offers ``w · act(s)`` to every
+    predecessor of ``s`` until nothing changes. ``inputs``: a :class:`Drives` (with a
+    :class:`TransitionGraph`) or a mapping transition → input. Returns transition → activity.
+    """
+    w = _check_w(w)
+    if isinstance(graph, TransitionGraph):
+        if isinstance(inputs, Drives):
+            arr = drive_input(graph, inputs)
+            inputs = dict(zip(graph.index().nodes, arr.tolist(), strict=True))
+        g = graph.nx
+    else:
+        g = graph
+        if isinstance(inputs, Drives):
+            raise TypeError("give a TransitionGraph to propagate Drives, or a mapping of inputs")
+    act = dict.fromkeys(g, 0.0)
+    for t, v in inputs.items():
+        if t not in act:
+            raise KeyError(f"drive input given for unknown transition {t!r}")
+        v = float(v)
+        if not 0.0 <= v <= 1.0:
+            raise ValueError(f"drive input of {t!r} must lie in [0, 1], got {v!r}")
+        act[t] = max(act[t], v)
+    pred = g.pred
+    queue = deque(n for n, v in act.items() if v > 0)
+    queued = set(queue)
+    while queue:
+        s = queue.popleft()
+        queued.discard(s)
+        offer = w * act[s]
+        for p in pred[s]:
+            if offer > act[p]:
+                act[p] = offer
+                if p not in queued:
+                    queued.add(p)
+                    queue.append(p)
+    return act
+
+
+# --------------------------------------------------------------------------- the planner
+@dataclass(frozen=True)
+class Choice:
+    """A decision: the transition to execute (``None``: the state has no outgoing transition),
+    its activity, and whether it was an exploratory (random) pick."""
+
+    transition: Transition | None
+    activity: float
+    explored: bool
+
+
+class Planner:
+    """Propagates drives through a :class:`TransitionGraph` and picks transitions.
+
+    The last propagation is reused while the graph structure, the goal links and the effective
+    drive levels (within ``replan_tolerance``) are unchanged; ``n_propagations`` counts real ones.
+    """
+
+    def __init__(self, params: PlannerParams | None = None, *, seed: int | None = None) -> None:
+        self.params = PlannerParams() if params is None else params
+        if not isinstance(self.params, PlannerParams):
+            raise TypeError(f"params must be PlannerParams, got {self.params!r}")
+        self.rng = np.random.default_rng(seed)
+        self.n_propagations = 0
+        self._key: tuple[Any, ...] | None = None
+        self._levels: dict[str, float] | None = None
+        self._activity: Activity | None = None
+        self._refs: tuple[TransitionGraph, Drives] | None = None  # keeps the cached ids valid
+
+    def activity(self, graph: TransitionGraph, drives: Drives, *, force: bool = False) -> Activity:
+        """The propagated activity for the current drives (cached, see the class docstring)."""
+        p = self.params
+        levels = effective_levels(drives, p.exploration_threshold)
+        key = (id(graph), graph.structure_version, id(drives), drives.links_version)
+        if (not force and self._activity is not None and key == self._key
+                and self._levels is not None and self._levels.keys() == levels.keys()
+                and all(abs(levels[n] - v) <= p.replan_tolerance for n, v in self._levels.items())):
+            return self._activity
+        inp = drive_input(graph, drives, p.exploration_threshold)
+        self._activity = propagate(graph, inp, p.w, method=p.method)
+        self._key, self._levels = key, levels
+        self._refs = (graph, drives)
+        self.n_propagations += 1
+        return self._activity
+
+    def decide(self, graph: TransitionGraph, drives: Drives, state: int,
+               rng: np.random.Generator | None = None) -> Choice:
+        """Choose the transition to execute from ``state`` (see :meth:`choose`), with details."""
+        out = graph.outgoing(state)  # KeyError for an unknown state
+        rng = self.rng if rng is None else rng
+        if not isinstance(rng, np.random.Generator):
+            raise TypeError(f"rng must be a numpy.random.Generator, got {type(rng).__name__}")
+        if not out:
+            return Choice(None, 0.0, False)
+        levels = effective_levels(drives, self.params.exploration_threshold)
+        if any(v > 0 for v in levels.values()):
+            act = self.activity(graph, drives)
+            vals = act.values[[act.index.pos[t] for t in out]]
+            best = float(vals.max())
+            if best > 0:
+                score = vals
+                if self.params.noise > 0:
+                    score = vals + self.params.noise * best * rng.standard_normal(len(vals))
+                top = float(score.max())
+                cands = np.flatnonzero(score >= top - 1e-12 * abs(top))
+                k = int(cands[0] if len(cands) == 1 else rng.choice(cands))
+                return Choice(out[k], float(vals[k]), False)
+        k = int(rng.integers(len(out)))
+        return Choice(out[k], 0.0, True)
+
+    def choose(self, graph: TransitionGraph, drives: Drives, state: int,
+               rng: np.random.Generator | None = None) -> Transition | None:
+        """The transition ``(state, x)`` to execute: the most active one (+ noise), or a uniform
+        random one when no active drive reaches ``state`` (exploration); ``None`` when ``state``
+        has no outgoing transition. ``KeyError`` for a state the map does not know.
+        """
+        return self.decide(graph, drives, state, rng).transition
+
+    def best_transition(self, graph: TransitionGraph, drives: Drives,
+                        state: int) -> Transition | None:
+        """The most active outgoing transition of ``state`` (no noise; first on ties), or ``None``
+        when none has activity."""
+        out = graph.outgoing(state)
+        if not out:
+            return None
+        act = self.activity(graph, drives)
+        vals = act.values[[act.index.pos[t] for t in out]]
+        k = int(np.argmax(vals))
+        return out[k] if vals[k] > 0 else None
+
+    def plan(self, graph: TransitionGraph, drives: Drives, state: int,
+             max_steps: int | None = None) -> list[Transition]:
+        """Follow the activity gradient from ``state``: the best transitions, one after the other,
+        up to and including the first goal transition whose activity is its own drive input.
+
+        Empty when no drive activity reaches ``state``. Along the path the activity grows by
+        ``1/w`` per step, so it ends after at most ``len(graph)`` steps.
+        """
+        act = self.activity(graph, drives)
+        limit = len(graph) if max_steps is None else int(max_steps)
+        path: list[Transition] = []
+        s = state
+        while len(path) < limit:
+            t = self.best_transition(graph, drives, s)
+            if t is None:
+                break
+            path.append(t)
+            if act.is_goal(t):
+                break
+            s = t[1]
+        return path
