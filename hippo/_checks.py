@@ -29,8 +29,12 @@ def check_positive(name: str, value: float, *, allow_zero: bool = False) -> floa
     return v
 
 
-def check_range(name: str, value: float, lo: float, hi: float, *, closed: str = "both") -> float:
-    """Raise ``ValueError`` unless ``lo <= value <= hi``; ``closed`` in {both, left, right, neither}."""
+def check_range(name: str, value: float, lo: float, hi: float, *,
+                closed: str = "both") -> float:
+    """Raise ``ValueError`` unless ``value`` lies in the interval.
+
+    ``closed`` says which ends belong to it: ``both``, ``left``, ``right`` or ``neither``.
+    """
     v = float(value)
     ok_lo = v >= lo if closed in ("both", "left") else v > lo
     ok_hi = v <= hi if closed in ("both", "right") else v < hi
@@ -42,7 +46,7 @@ def check_range(name: str, value: float, lo: float, hi: float, *, closed: str = 
 
 
 def check_shape(name: str, arr: np.ndarray, shape: tuple[int | None, ...]) -> np.ndarray:
-    """Raise ``ValueError`` unless ``arr`` has ``len(shape)`` dims matching ``shape`` (None = any)."""
+    """Raise ``ValueError`` unless ``arr`` has dims matching ``shape`` (None = any size)."""
     a = np.asarray(arr)
     if a.ndim != len(shape) or any(s is not None and s != d for s, d in zip(shape, a.shape)):
         want = "(" + ", ".join("*" if s is None else str(s) for s in shape) + ")"

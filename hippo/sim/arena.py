@@ -1,0 +1,296 @@
+"""Arenas: wall segments, coloured floor zones, named regions and labelled reference locations.
+
+An :class:`Arena` is plain geometry (centimetres); :class:`~hippo.sim.world.World` turns it into a
+pymunk space. Reference locations and regions are for analysis only and never reach the robot.
+Build a new arena with :class:`ArenaBuilder`::
+
+    arena = (ArenaBuilder("box", 100, 60)
+             .outer_walls()
+             .wall((50, 0), (50, 40))
+             .zone("goal", (80, 40, 95, 55), colour=1)
+             .region("left", (0, 0, 50, 60)).region("right", (50, 0, 100, 60))
+             .grid_locations(5, 3)
+             .build())
+"""
+
+from __future__ import annotations
+
+import heapq
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from hippo._checks import check_finite
+
+Point = tuple[float, float]
+Rect = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax
+
+
+@dataclass(frozen=True)
+class Zone:
+    """A rectangle of coloured floor; ``colour`` is the id the floor sensor reads (0 = plain)."""
+
+    name: str
+    rect: Rect
+    colour: int
+
+    def contains(self, x: float, y: float) -> bool:
+        x0, y0, x1, y1 = self.rect
+        return x0 <= x <= x1 and y0 <= y <= y1
+
+
+@dataclass(frozen=True)
+class Region:
+    """A named part of the arena (a room, a corridor) made of one or more rectangles."""
+
+    name: str
+    rects: tuple[Rect, ...]
+
+    def contains(self, x: float, y: float) -> bool:
+        return any(r[0] <= x <= r[2] and r[1] <= y <= r[3] for r in self.rects)
+
+
+@dataclass(frozen=True)
+class Arena:
+    """Static geometry of a world. Coordinates in cm; headings in radians (0 = +x, CCW)."""
+
+    name: str
+    width: float
+    height: float
+    walls: tuple[tuple[Point, Point], ...]
+    zones: tuple[Zone, ...] = ()
+    regions: tuple[Region, ...] = ()
+    locations: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    start_pose: tuple[float, float, float] = (10.0, 10.0, 0.0)
+    wall_radius: float = 0.5
+    #: named points a scenario may use (goal centre, checkpoints, start places)
+    landmarks: dict[str, Point] = field(default_factory=dict)
+
+    # -- analysis helpers ------------------------------------------------------------------
+    @property
+    def region_names(self) -> list[str]:
+        return [r.name for r in self.regions]
+
+    @property
+    def zone_names(self) -> list[str]:
+        """Names by colour id: index 0 is plain floor."""
+        names = ["floor"] + [""] * max((z.colour for z in self.zones), default=0)
+        for z in self.zones:
+            names[z.colour] = z.name
+        return names
+
+    def region_of(self, x: float, y: float) -> str:
+        """Name of the first region containing ``(x, y)``, or ``"none"``."""
+        for r in self.regions:
+            if r.contains(x, y):
+                return r.name
+        return "none"
+
+    def region_index(self, x: float, y: float) -> int:
+        """Index into :attr:`region_names`, or -1 outside every region."""
+        for i, r in enumerate(self.regions):
+            if r.contains(x, y):
+                return i
+        return -1
+
+    def zone_of(self, x: float, y: float) -> int:
+        """Floor colour under ``(x, y)``: the colour id of the first zone containing it, else 0."""
+        for z in self.zones:
+            if z.contains(x, y):
+                return z.colour
+        return 0
+
+    def nearest_location(self, x: float | np.ndarray, y: float | np.ndarray) -> np.ndarray:
+        """Index of the nearest labelled reference location for each point."""
+        if len(self.locations) == 0:
+            return np.full(np.shape(x), -1, dtype=int)
+        p = np.stack([np.asarray(x, float), np.asarray(y, float)], axis=-1)
+        d = np.linalg.norm(p[..., None, :] - self.locations, axis=-1)
+        return np.argmin(d, axis=-1)
+
+    def wall_array(self) -> np.ndarray:
+        """Walls as an ``(n, 4)`` array ``x0, y0, x1, y1``."""
+        return np.array([[a[0], a[1], b[0], b[1]] for a, b in self.walls], dtype=float)
+
+    def distance_to_walls(self, x: float, y: float) -> float:
+        """Euclidean distance from a point to the nearest wall segment's centre line."""
+        w = self.wall_array()
+        a, b = w[:, :2], w[:, 2:]
+        p = np.array([x, y], float)
+        ab = b - a
+        t = np.clip(np.einsum("ij,ij->i", p - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab),
+                                                                   1e-12), 0, 1)
+        closest = a + t[:, None] * ab
+        return float(np.min(np.linalg.norm(p - closest, axis=1)))
+
+    def is_free(self, x: float, y: float, radius: float) -> bool:
+        """True if a disc of ``radius`` at ``(x, y)`` lies inside the arena and clear of walls."""
+        if not (radius <= x <= self.width - radius and radius <= y <= self.height - radius):
+            return False
+        return self.distance_to_walls(x, y) >= radius + self.wall_radius
+
+    # -- free-space grid and geodesic distances ----------------------------------------------
+    def free_grid(self, radius: float, cell: float = 2.0) -> tuple[np.ndarray, np.ndarray,
+                                                                   np.ndarray]:
+        """Boolean occupancy grid of centres where a disc of ``radius`` fits (xs, ys, free)."""
+        xs = np.arange(cell / 2, self.width, cell)
+        ys = np.arange(cell / 2, self.height, cell)
+        gx, gy = np.meshgrid(xs, ys, indexing="ij")
+        pts = np.stack([gx.ravel(), gy.ravel()], 1)
+        w = self.wall_array()
+        a, b = w[:, :2], w[:, 2:]
+        ab = b - a
+        den = np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-12)
+        dmin = np.full(len(pts), np.inf)
+        for k in range(len(w)):
+            t = np.clip(((pts - a[k]) @ ab[k]) / den[k], 0, 1)
+            d = np.linalg.norm(pts - (a[k] + t[:, None] * ab[k]), axis=1)
+            dmin = np.minimum(dmin, d)
+        inside = ((pts[:, 0] >= radius) & (pts[:, 0] <= self.width - radius)
+                  & (pts[:, 1] >= radius) & (pts[:, 1] <= self.height - radius))
+        free = (dmin >= radius + self.wall_radius) & inside
+        return xs, ys, free.reshape(gx.shape)
+
+    def geodesic_distance(self, start: Point, goal_rect: Rect | Point, radius: float = 3.7,
+                          cell: float = 2.0) -> float:
+        """Shortest collision-free path length (cm) from ``start`` to a point or rectangle.
+
+        Dijkstra on an 8-connected grid of free cells; ``inf`` if unreachable.
+        """
+        xs, ys, free = self.free_grid(radius, cell)
+        nx, ny = free.shape
+
+        def idx(p: Point) -> tuple[int, int]:
+            return (int(np.clip(np.argmin(np.abs(xs - p[0])), 0, nx - 1)),
+                    int(np.clip(np.argmin(np.abs(ys - p[1])), 0, ny - 1)))
+
+        if len(goal_rect) == 2:
+            gi = idx(goal_rect)  # type: ignore[arg-type]
+            goal = np.zeros_like(free)
+            goal[gi] = True
+        else:
+            x0, y0, x1, y1 = goal_rect  # type: ignore[misc]
+            goal = ((xs[:, None] >= x0) & (xs[:, None] <= x1)
+                    & (ys[None, :] >= y0) & (ys[None, :] <= y1)) & free
+        si = idx(start)
+        dist = np.full(free.shape, np.inf)
+        dist[si] = 0.0
+        heap = [(0.0, si)]
+        steps = [(dx, dy, cell * np.hypot(dx, dy)) for dx in (-1, 0, 1) for dy in (-1, 0, 1)
+                 if dx or dy]
+        while heap:
+            d, (i, j) = heapq.heappop(heap)
+            if d > dist[i, j]:
+                continue
+            if goal[i, j]:
+                return float(d)
+            for dx, dy, c in steps:
+                a, b = i + dx, j + dy
+                if 0 <= a < nx and 0 <= b < ny and free[a, b] and d + c < dist[a, b]:
+                    dist[a, b] = d + c
+                    heapq.heappush(heap, (d + c, (a, b)))
+        return float("inf")
+
+    def sample_free_pose(self, rng: np.random.Generator, radius: float = 3.7,
+                         margin: float = 2.0, rect: Rect | None = None) -> tuple[float, float,
+                                                                                 float]:
+        """A uniformly random collision-free pose (optionally inside ``rect``)."""
+        x0, y0, x1, y1 = rect if rect is not None else (0.0, 0.0, self.width, self.height)
+        for _ in range(10_000):
+            x, y = rng.uniform(x0, x1), rng.uniform(y0, y1)
+            if self.is_free(x, y, radius + margin):
+                return float(x), float(y), float(rng.uniform(-np.pi, np.pi))
+        raise RuntimeError(f"no free pose found in {self.name} inside {rect}")
+
+
+class ArenaBuilder:
+    """Fluent builder for :class:`Arena` (every method returns the builder)."""
+
+    def __init__(self, name: str, width: float, height: float) -> None:
+        if width <= 0 or height <= 0:
+            raise ValueError(f"arena size must be positive, got {width} x {height}")
+        self.name, self.width, self.height = name, float(width), float(height)
+        self._walls: list[tuple[Point, Point]] = []
+        self._zones: list[Zone] = []
+        self._regions: list[Region] = []
+        self._locations: list[Point] = []
+        self._landmarks: dict[str, Point] = {}
+        self._start: tuple[float, float, float] | None = None
+
+    def wall(self, a: Sequence[float], b: Sequence[float]) -> ArenaBuilder:
+        """A straight wall segment from ``a`` to ``b``."""
+        pa = tuple(float(v) for v in check_finite("wall start", a))
+        pb = tuple(float(v) for v in check_finite("wall end", b))
+        if len(pa) != 2 or len(pb) != 2:
+            raise ValueError("wall end points must be (x, y) pairs")
+        if pa == pb:
+            raise ValueError(f"wall from {pa} to {pb} has zero length")
+        self._walls.append((pa, pb))  # type: ignore[arg-type]
+        return self
+
+    def polyline(self, points: Sequence[Sequence[float]], closed: bool = False) -> ArenaBuilder:
+        """Walls joining consecutive points (and the last to the first if ``closed``)."""
+        pts = [tuple(p) for p in points]
+        for a, b in zip(pts, pts[1:] + (pts[:1] if closed else [])):
+            self.wall(a, b)
+        return self
+
+    def box(self, rect: Rect) -> ArenaBuilder:
+        """A closed rectangular block (pillar) ``(xmin, ymin, xmax, ymax)``."""
+        x0, y0, x1, y1 = rect
+        return self.polyline([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], closed=True)
+
+    def outer_walls(self) -> ArenaBuilder:
+        """The four walls of the bounding rectangle."""
+        return self.box((0.0, 0.0, self.width, self.height))
+
+    def zone(self, name: str, rect: Rect, colour: int = 1) -> ArenaBuilder:
+        """A coloured floor rectangle; ``colour`` ≥ 1 is what the floor sensor reports."""
+        if colour < 1:
+            raise ValueError("zone colour ids start at 1 (0 is plain floor)")
+        self._zones.append(Zone(name, tuple(map(float, rect)), int(colour)))  # type: ignore
+        return self
+
+    def region(self, name: str, *rects: Rect) -> ArenaBuilder:
+        """A named region made of one or more rectangles (for analysis only)."""
+        self._regions.append(Region(name, tuple(tuple(map(float, r)) for r in rects)))  # type: ignore
+        return self
+
+    def location(self, x: float, y: float) -> ArenaBuilder:
+        """One labelled reference location (for analysis only)."""
+        self._locations.append((float(x), float(y)))
+        return self
+
+    def grid_locations(self, nx: int, ny: int, rect: Rect | None = None) -> ArenaBuilder:
+        """An ``nx`` × ``ny`` grid of reference locations over ``rect`` (cell centres)."""
+        x0, y0, x1, y1 = rect if rect is not None else (0, 0, self.width, self.height)
+        for j in range(ny):
+            for i in range(nx):
+                self.location(x0 + (i + 0.5) * (x1 - x0) / nx, y0 + (j + 0.5) * (y1 - y0) / ny)
+        return self
+
+    def landmark(self, name: str, x: float, y: float) -> ArenaBuilder:
+        """A named point a scenario can refer to (goal centre, checkpoint, start place)."""
+        self._landmarks[name] = (float(x), float(y))
+        return self
+
+    def start(self, x: float, y: float, heading: float = 0.0) -> ArenaBuilder:
+        """The robot's default start pose."""
+        self._start = (float(x), float(y), float(heading))
+        return self
+
+    def build(self) -> Arena:
+        """Freeze into an :class:`Arena` (checks the start pose is free)."""
+        if not self._walls:
+            raise ValueError(f"arena {self.name!r} has no walls")
+        arena = Arena(
+            name=self.name, width=self.width, height=self.height, walls=tuple(self._walls),
+            zones=tuple(self._zones), regions=tuple(self._regions),
+            locations=np.array(self._locations, float).reshape(-1, 2),
+            start_pose=self._start or (self.width / 2, self.height / 2, 0.0),
+            landmarks=dict(self._landmarks),
+        )
+        if not arena.is_free(arena.start_pose[0], arena.start_pose[1], 3.7):
+            raise ValueError(f"start pose {arena.start_pose} of {self.name!r} is not free")
+        return arena

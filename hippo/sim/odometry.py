@@ -1,0 +1,36 @@
+"""Path integration of odometry: the robot's own estimate of its pose (never a place-cell input).
+
+Each tick's odometry is ``(dx, dy, dθ)`` with ``(dx, dy)`` in the robot frame at the start of
+the tick. Integration: ``x += cos θ dx − sin θ dy``, ``y += sin θ dx + cos θ dy``, ``θ += dθ``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from hippo._checks import check_finite
+
+
+class PathIntegrator:
+    """Dead reckoning from odometry, starting at ``pose`` (default: origin, heading 0)."""
+
+    def __init__(self, pose: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> None:
+        self.reset(pose)
+
+    def reset(self, pose: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> None:
+        self.x, self.y, self.heading = (float(v) for v in pose)
+
+    @property
+    def pose(self) -> tuple[float, float, float]:
+        return self.x, self.y, self.heading
+
+    def step(self, odometry: np.ndarray) -> tuple[float, float, float]:
+        """Integrate one tick of odometry and return the new pose estimate."""
+        dx, dy, dth = check_finite("odometry", odometry)
+        c, s = math.cos(self.heading), math.sin(self.heading)
+        self.x += c * dx - s * dy
+        self.y += s * dx + c * dy
+        self.heading = (self.heading + dth + math.pi) % (2 * math.pi) - math.pi
+        return self.pose

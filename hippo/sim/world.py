@@ -1,0 +1,286 @@
+"""The simulated world: a pymunk space with the arena's walls, floor zones, obstacles and a robot.
+
+``World.step(action)`` advances one control period ``dt`` (default 0.2 s, the e-puck's
+sense-act cycle) in ``substeps`` physics steps and returns an :class:`Observation`. Units are
+centimetres, seconds and radians. ``reset(seed)`` rebuilds the pymunk space from scratch (pymunk
+keeps contact state between steps, so moving the robot back is not a reset).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pymunk
+
+from hippo._checks import check_positive
+from hippo.sim.arena import Arena
+from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
+
+if TYPE_CHECKING:
+    from hippo.sim.teacher import Teacher
+
+_CAT_ROBOT, _CAT_WALL, _CAT_OBSTACLE = 0b001, 0b010, 0b100
+_RAY_FILTER = pymunk.ShapeFilter(mask=_CAT_WALL | _CAT_OBSTACLE)
+
+
+def wrap_angle(a: float) -> float:
+    """Wrap an angle to (-π, π]."""
+    return (a + math.pi) % (2 * math.pi) - math.pi
+
+
+class Observation:
+    """What the robot perceives after one tick.
+
+    ``ir`` (sensor readings in [0, 1]), ``floor`` (colour id under the robot, 0 = plain),
+    ``sound`` (the reward sound was played this tick), ``odometry`` (dx, dy in the robot frame at
+    the start of the tick and dθ, cm and rad), ``moving`` (proprioception) and ``t`` are the
+    robot's senses. ``pose`` = (x, y, heading) and ``speed`` are ground truth, for analysis,
+    recording and the teacher only: they are never an input to the place cells.
+    """
+
+    __slots__ = ("floor", "ir", "moving", "odometry", "pose", "sound", "speed", "t", "tick")
+
+    def __init__(self, t: float, tick: int, ir: np.ndarray, floor: int, sound: bool,
+                 odometry: np.ndarray, moving: bool, pose: tuple[float, float, float],
+                 speed: float) -> None:
+        self.t, self.tick, self.ir, self.floor, self.sound = t, tick, ir, floor, sound
+        self.odometry, self.moving, self.pose, self.speed = odometry, moving, pose, speed
+
+    def __repr__(self) -> str:
+        x, y, h = self.pose
+        return (f"Observation(t={self.t:.1f}, pose=({x:.1f}, {y:.1f}, {h:.2f}), floor={self.floor},"
+                f" sound={self.sound}, moving={self.moving})")
+
+
+@dataclass
+class Obstacle:
+    """A body added to the world at run time (movable box or the teacher's block)."""
+
+    body: pymunk.Body
+    shapes: list[pymunk.Shape] = field(default_factory=list)
+    kind: str = "box"
+
+
+class World:
+    """A robot in an arena, simulated with pymunk.
+
+    Parameters
+    ----------
+    arena : the static geometry (see :mod:`hippo.sim.arenas`).
+    robot : body and drive parameters (default: the e-puck of SMC09).
+    sensors : ``"ir8"`` (SMC09), ``"ray17"`` (ICANN09) or a :class:`SensorModel`.
+    dt : control period in s; ``substeps`` physics steps (at least) per control period, raised
+        automatically so that the robot travels at most about 1 cm per physics step.
+    seed : seed of the world's random stream (sensor and odometry noise).
+    """
+
+    def __init__(self, arena: Arena, robot: RobotParams | None = None,
+                 sensors: str | SensorModel = "ir8", dt: float = 0.2, substeps: int = 5,
+                 seed: int | None = 0) -> None:
+        self.arena = arena
+        self.robot = robot or RobotParams()
+        self.sensors = get_sensor_model(sensors)
+        self.dt = check_positive("dt", dt)
+        if int(substeps) < 1:
+            raise ValueError(f"substeps must be >= 1, got {substeps}")
+        # at most ~1 cm of travel per physics step, so contacts are resolved before the body
+        # sinks into a wall (penetration is about one step's travel; 10x speed needs 11 steps)
+        self.substeps = max(int(substeps), math.ceil(self.robot.speed_max * self.dt / 1.0))
+        ang = self.sensors.angles
+        self._ray_cos, self._ray_sin = np.cos(ang).tolist(), np.sin(ang).tolist()
+        self._span = self.sensors.range_max - self.sensors.range_min
+        from hippo.sim.teacher import Teacher
+
+        self.teacher: Teacher = Teacher(self)
+        self.reset(seed)
+
+    # -- construction -----------------------------------------------------------------------
+    def reset(self, seed: int | None = None, pose: tuple[float, float, float] | None = None
+              ) -> Observation:
+        """Rebuild the space, put the robot at ``pose`` (default: the arena's start pose)."""
+        self.rng = np.random.default_rng(seed)
+        self.seed = seed
+        self.space = space = pymunk.Space()
+        space.iterations = 10
+        for a, b in self.arena.walls:
+            seg = pymunk.Segment(space.static_body, a, b, self.arena.wall_radius)
+            seg.friction, seg.elasticity = 0.0, 0.0
+            seg.filter = pymunk.ShapeFilter(categories=_CAT_WALL)
+            space.add(seg)
+        r = self.robot
+        body = pymunk.Body(r.mass, pymunk.moment_for_circle(r.mass, 0, r.radius))
+        shape = pymunk.Circle(body, r.radius)
+        shape.friction, shape.elasticity = 0.0, 0.0
+        shape.filter = pymunk.ShapeFilter(categories=_CAT_ROBOT)
+        self._v = 0.0
+        self._omega = 0.0
+
+        def drive(b: pymunk.Body, gravity: object, damping: float, dt: float) -> None:
+            a = b.angle
+            b.velocity = (self._v * math.cos(a), self._v * math.sin(a))
+            b.angular_velocity = self._omega
+
+        body.velocity_func = drive
+        self.body, self._shape = body, shape
+        x, y, h = pose if pose is not None else self.arena.start_pose
+        self._check_free(x, y)
+        body.position, body.angle = (x, y), h
+        space.add(body, shape)
+        self.obstacles: list[Obstacle] = []
+        self.t = 0.0
+        self.tick = 0
+        self.events: list[tuple[float, str, str]] = []
+        self._sound_pending = False
+        self._last_command = (0.0, 0.0)
+        self.teacher.reset()
+        return self._observe(np.zeros(3), 0.0, sound=False)
+
+    def _check_free(self, x: float, y: float) -> None:
+        if not all(math.isfinite(v) for v in (x, y)):
+            raise ValueError(f"robot position must be finite, got ({x}, {y})")
+        if not self.arena.is_free(x, y, self.robot.radius):
+            raise ValueError(f"cannot place the robot at ({x:.1f}, {y:.1f}) in "
+                             f"{self.arena.name!r}: it would overlap a wall or leave the arena")
+
+    # -- the robot's state ------------------------------------------------------------------
+    @property
+    def pose(self) -> tuple[float, float, float]:
+        """Ground-truth (x, y, heading) of the robot."""
+        p = self.body.position
+        return p.x, p.y, wrap_angle(self.body.angle)
+
+    def place_robot(self, x: float, y: float, heading: float, *, event: str = "kidnap"
+                    ) -> None:
+        """Move the robot to a pose and keep going (kidnapping); the pose must be free."""
+        self._check_free(x, y)
+        for o in self.obstacles:
+            if any(s.point_query((x, y)).distance < self.robot.radius for s in o.shapes):
+                raise ValueError(f"cannot place the robot at ({x:.1f}, {y:.1f}): obstacle there")
+        self.body.position, self.body.angle = (x, y), heading
+        self.body.velocity, self.body.angular_velocity = (0, 0), 0
+        self.space.reindex_shapes_for_body(self.body)
+        self.events.append((self.t, event, f"{x:.2f},{y:.2f},{heading:.4f}"))
+
+    # -- obstacles --------------------------------------------------------------------------
+    def add_box(self, rect: tuple[float, float, float, float], *, movable: bool = True,
+                mass: float = 2.0) -> Obstacle:
+        """Add a box obstacle; ``movable`` boxes can be pushed (with floor friction)."""
+        x0, y0, x1, y1 = rect
+        w, h = x1 - x0, y1 - y0
+        if w <= 0 or h <= 0:
+            raise ValueError(f"box {rect} has no area")
+        if movable:
+            body = pymunk.Body(mass, pymunk.moment_for_box(mass, (w, h)))
+
+            def floor_friction(b: pymunk.Body, g: object, damping: float, dt: float) -> None:
+                pymunk.Body.update_velocity(b, (0, 0), 0.05 ** dt, dt)
+
+            body.velocity_func = floor_friction
+        else:
+            body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+        body.position = ((x0 + x1) / 2, (y0 + y1) / 2)
+        shape = pymunk.Poly.create_box(body, (w, h))
+        return self._add_obstacle(body, [shape], "box")
+
+    def add_ring(self, centre: tuple[float, float], radius: float, *, n: int = 16,
+                 kind: str = "block") -> Obstacle:
+        """A fixed ring of wall around ``centre`` (the teacher's block uses it)."""
+        body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+        body.position = centre
+        pts = [(radius * math.cos(2 * math.pi * k / n), radius * math.sin(2 * math.pi * k / n))
+               for k in range(n)]
+        shapes = [pymunk.Segment(body, pts[k], pts[(k + 1) % n], 0.5) for k in range(n)]
+        return self._add_obstacle(body, shapes, kind)
+
+    def _add_obstacle(self, body: pymunk.Body, shapes: list[pymunk.Shape], kind: str
+                      ) -> Obstacle:
+        for s in shapes:
+            s.friction, s.elasticity = 0.0, 0.0
+            s.filter = pymunk.ShapeFilter(categories=_CAT_OBSTACLE)
+        self.space.add(body, *shapes)
+        obst = Obstacle(body, shapes, kind)
+        self.obstacles.append(obst)
+        return obst
+
+    def remove_obstacle(self, obstacle: Obstacle) -> None:
+        """Take an obstacle out of the world."""
+        if obstacle not in self.obstacles:
+            raise ValueError("this obstacle is not in the world")
+        self.space.remove(obstacle.body, *obstacle.shapes)
+        self.obstacles.remove(obstacle)
+
+    # -- sensing ----------------------------------------------------------------------------
+    def ray_distances(self) -> np.ndarray:
+        """Noise-free free length (cm) of each sensor ray from the body's rim, capped at range."""
+        p = self.body.position
+        a = self.body.angle
+        ca, sa = math.cos(a), math.sin(a)
+        r = self.robot.radius
+        rmax = self.sensors.range_max
+        query = self.space.segment_query_first
+        out = []
+        for c, s in zip(self._ray_cos, self._ray_sin):
+            dx, dy = c * ca - s * sa, s * ca + c * sa
+            sx, sy = p.x + r * dx, p.y + r * dy
+            hit = query((sx, sy), (sx + rmax * dx, sy + rmax * dy), 0.0, _RAY_FILTER)
+            out.append(hit.alpha * rmax if hit is not None else rmax)
+        return np.array(out)
+
+    def sense(self) -> np.ndarray:
+        """Sensor readings in [0, 1] with Gaussian noise (0 = touching, 1 = nothing in range)."""
+        d = self.ray_distances()
+        u = (d - self.sensors.range_min) / self._span
+        if self.sensors.noise_sd > 0:
+            u = u + self.rng.normal(0.0, self.sensors.noise_sd, u.shape)
+        return np.clip(u, 0.0, 1.0)
+
+    def emit_sound(self) -> None:
+        """Play the reward sound: the next observation has ``sound=True``."""
+        self._sound_pending = True
+        self.events.append((self.t, "sound", ""))
+
+    # -- dynamics ---------------------------------------------------------------------------
+    def step(self, action: tuple[float, float] | np.ndarray) -> Observation:
+        """Apply wheel speeds ``(left, right)`` in cm/s for one control period."""
+        try:
+            left, right = float(action[0]), float(action[1])
+        except (TypeError, IndexError, ValueError):
+            raise ValueError(f"action must be a pair of wheel speeds, got {action!r}") from None
+        if not (math.isfinite(left) and math.isfinite(right)):
+            raise ValueError(f"wheel commands must be finite, got ({left}, {right})")
+        teacher = self.teacher
+        if teacher.active:
+            left, right = teacher.override(left, right)
+        left, right = self.robot.limit_wheels(left, right)
+        self._last_command = (left, right)
+        self._v, self._omega = self.robot.body_velocity(left, right)
+        x0, y0, h0 = self.pose
+        # chipmunk integrates positions before velocities: seed the first substep's velocity
+        # (velocity_func then imposes it again at every substep, after contacts are solved)
+        a = self.body.angle
+        self.body.velocity = (self._v * math.cos(a), self._v * math.sin(a))
+        self.body.angular_velocity = self._omega
+        h = self.dt / self.substeps
+        for _ in range(self.substeps):
+            self.space.step(h)
+        self.t = round(self.t + self.dt, 9)
+        self.tick += 1
+        x1, y1, h1 = self.pose
+        ddx, ddy = x1 - x0, y1 - y0
+        c, s = math.cos(h0), math.sin(h0)
+        odo = np.array([c * ddx + s * ddy, -s * ddx + c * ddy, wrap_angle(h1 - h0)])
+        speed = math.hypot(ddx, ddy) / self.dt
+        if self.robot.odometry_noise > 0:
+            odo *= 1.0 + self.rng.normal(0.0, self.robot.odometry_noise, 3)
+        sound, self._sound_pending = self._sound_pending, False
+        if teacher.active:
+            teacher.after_step()
+        return self._observe(odo, speed, sound)
+
+    def _observe(self, odo: np.ndarray, speed: float, sound: bool) -> Observation:
+        x, y, h = self.pose
+        return Observation(self.t, self.tick, self.sense(), self.arena.zone_of(x, y), sound, odo,
+                           speed > self.robot.moving_threshold, (x, y, h), speed)

@@ -1,0 +1,293 @@
+import math
+
+import numpy as np
+import pytest
+
+from hippo.io import CorruptFileError
+from hippo.sim import (
+    ArenaBuilder,
+    PathIntegrator,
+    Recording,
+    RobotParams,
+    SensorModel,
+    WallFollower,
+    WallFollowerParams,
+    World,
+    arenas,
+    record,
+)
+from hippo.sim.controllers import GoToHeading
+
+EXACT8 = SensorModel("exact8", (-17.0, -46.0, -90.0, -152.0, 152.0, 90.0, 46.0, 17.0), 4.0, 30.0,
+                     0.0)
+
+
+def box(w=100.0, h=100.0):
+    return ArenaBuilder("box", w, h).outer_walls().start(w / 2, h / 2).build()
+
+
+@pytest.mark.parametrize("dist,heading", [(10.0, 0.0), (15.0, 0.0), (20.0, 0.3), (12.0, -0.2)])
+def test_sensor_reading_equals_analytic_distance(dist, heading):
+    arena = box()
+    world = World(arena, sensors=EXACT8, seed=0)
+    # robot centre at `dist` from the right wall (x = 100), walls are 0.5 cm thick (radius)
+    x = 100.0 - 0.5 - dist
+    world.reset(0, pose=(x, 50.0, heading))
+    d = world.ray_distances()
+    r = world.robot.radius
+    for k, a in enumerate(np.deg2rad(EXACT8.angles_deg)):
+        phi = heading + a
+        if math.cos(phi) <= 0.05:
+            continue  # this ray looks away from the right wall
+        sx = x + r * math.cos(phi)
+        sy = 50.0 + r * math.sin(phi)
+        expect = (99.5 - sx) / math.cos(phi)
+        if not (0 <= sy + expect * math.sin(phi) <= 100):
+            continue  # would hit the top or bottom wall first
+        expect = min(expect, 30.0)
+        assert d[k] == pytest.approx(expect, abs=1e-6)
+        u = world.sense()[k]
+        assert u == pytest.approx(np.clip((expect - 4) / 26, 0, 1), abs=1e-6)
+
+
+def test_readings_are_scaled_and_clipped():
+    world = World(box(), sensors=EXACT8, seed=0)
+    world.reset(0, pose=(50, 50, 0))
+    assert np.all(world.sense() == 1.0)  # nothing within 30 cm in the middle of a 1 m box
+    world.reset(0, pose=(99.5 - 3.7 - 1.0, 50, 0))  # 1 cm from the wall: closer than 4 cm
+    assert world.sense()[0] == 0.0 and world.sense()[7] == 0.0
+
+
+def _min_clearance(arena, xs, ys):
+    return min(arena.distance_to_walls(x, y) for x, y in zip(xs, ys))
+
+
+@pytest.mark.parametrize("speed_factor", [1.0, 10.0])
+@pytest.mark.parametrize("arena_name", ["two-rooms", "maze-e1"])
+def test_robot_never_crosses_a_wall(arena_name, speed_factor):
+    arena = arenas.get(arena_name)
+    robot = RobotParams(speed_max=5.08 * speed_factor)
+    for seed in range(3):
+        rng = np.random.default_rng(seed)
+        world = World(arena, robot=robot, seed=seed)
+        xs, ys = [], []
+        cmd = np.zeros(2)
+        for _ in range(600):
+            if rng.random() < 0.1:
+                cmd = rng.uniform(-1, 1, 2) * robot.speed_max
+            obs = world.step(cmd)
+            xs.append(obs.pose[0])
+            ys.append(obs.pose[1])
+        # the body (radius 3.7) may be pressed onto a wall (radius 0.5) but never through it
+        assert _min_clearance(arena, xs, ys) > robot.radius + arena.wall_radius - 0.75
+        assert all(0 < x < arena.width for x in xs) and all(0 < y < arena.height for y in ys)
+
+
+def test_same_seed_gives_bit_identical_recording():
+    a = record("two-rooms", 800, seed=3, progress=False)
+    b = record("two-rooms", 800, seed=3, progress=False)
+    c = record("two-rooms", 800, seed=4, progress=False)
+    np.testing.assert_array_equal(a.sensors, b.sensors)
+    np.testing.assert_array_equal(a.x, b.x)
+    assert not np.array_equal(a.sensors, c.sensors)
+
+
+def test_odometry_integrates_true_motion_in_free_space():
+    world = World(box(300, 300), seed=0)
+    obs = world.reset(0, pose=(150, 150, 0.4))
+    pi = PathIntegrator(obs.pose)
+    for k in range(150):
+        left, right = 3.0 + 2 * math.sin(k / 20), 3.0 + 2 * math.cos(k / 15)
+        obs = world.step((left, right))
+        pi.step(obs.odometry)
+    x, y, h = obs.pose
+    assert pi.x == pytest.approx(x, abs=1e-6) and pi.y == pytest.approx(y, abs=1e-6)
+    assert math.cos(pi.heading - h) == pytest.approx(1.0, abs=1e-9)
+
+
+def test_differential_drive_kinematics():
+    world = World(box(300, 300), seed=0)
+    world.reset(0, pose=(150, 150, 0.0))
+    obs = world.step((4.0, 4.0))  # straight: 4 cm/s for 0.2 s
+    assert obs.pose[0] - 150 == pytest.approx(0.8, abs=1e-3)
+    world.reset(0, pose=(150, 150, 0.0))
+    obs = world.step((-2.0, 2.0))  # spin in place: omega = 4 / 5.3 rad/s
+    assert obs.pose[2] == pytest.approx(0.2 * 4.0 / 5.3, abs=1e-3)
+    assert math.hypot(obs.pose[0] - 150, obs.pose[1] - 150) < 1e-3
+    assert not obs.moving
+
+
+def test_wheel_limits():
+    r = RobotParams()
+    assert r.limit_wheels(10.0, -10.0) == (5.08, -5.08)
+    assert r.limit_wheels(0.1, -0.15) == (0.0, 0.0)  # below 0.198 cm/s the stepper stalls
+    left, right = r.wheels_for(5.0, 1.0)
+    assert max(abs(left), abs(right)) <= 5.08 + 1e-12
+    assert (right - left) / r.axle == pytest.approx(1.0)
+
+
+def test_wall_follower_visits_both_rooms():
+    rec = record("two-rooms", 6000, seed=0, rho=0.008, progress=False)
+    occupancy = {n: np.mean(rec.region == i) for i, n in enumerate(rec.region_names)}
+    assert occupancy["room_a"] > 0.1 and occupancy["room_b"] > 0.1 and occupancy["corridor"] > 0
+    changes = np.sum(np.diff(rec.region[rec.region != 1]) != 0)
+    assert changes >= 4
+
+
+def test_wall_follower_switches_and_loops():
+    ctrl = WallFollower(WallFollowerParams(rho=0.008), rng=1)
+    record("two-rooms", 2000, seed=1, controller=ctrl, progress=False)
+    assert 5 <= ctrl.switches <= 35  # expected 16 switches in 2000 ticks at rho = 0.008
+
+
+def test_wall_follower_covers_most_of_the_maze():
+    rec = record("maze-e1", 20000, seed=0, rho=0.0, sensors="ray17", progress=False)
+    assert len(np.unique(rec.label)) >= 56
+
+
+def test_block_stops_the_robot_and_it_resumes():
+    arena = arenas.two_rooms()
+    world = World(arena, seed=0)
+    obs = world.reset(0)
+    ctrl = WallFollower(WallFollowerParams(rho=0.0), rng=0)
+    for _ in range(50):
+        obs = world.step(ctrl.act(obs))
+    world.teacher.block(6.0)
+    x0, y0, _ = obs.pose
+    speeds = []
+    for _ in range(25):  # 5 s of block
+        obs = world.step(ctrl.act(obs))
+        speeds.append(obs.speed)
+    assert math.hypot(obs.pose[0] - x0, obs.pose[1] - y0) < 3.0
+    assert not obs.moving
+    for _ in range(30):
+        obs = world.step(ctrl.act(obs))
+    assert not world.teacher.blocking
+    assert any(k == "block_end" for _, k, _ in world.events)
+    assert math.hypot(obs.pose[0] - x0, obs.pose[1] - y0) > 5.0 and obs.moving
+
+
+def test_leash_leads_to_waypoints_and_releases():
+    arena = arenas.patrol_course()
+    world = World(arena, seed=0)
+    obs = world.reset(0)
+    world.teacher.lead(arenas.loop_waypoints()[:5])
+    for _ in range(800):
+        obs = world.step((0.0, 0.0))  # the robot's own command is overridden
+        if not world.teacher.leading:
+            break
+    assert not world.teacher.leading
+    tx, ty = arenas.loop_waypoints()[4]
+    assert math.hypot(obs.pose[0] - tx, obs.pose[1] - ty) < 4.0
+
+
+def test_sound_appears_once_in_next_observation():
+    world = World(box(), seed=0)
+    world.reset(0)
+    world.teacher.sound()
+    assert world.step((0, 0)).sound
+    assert not world.step((0, 0)).sound
+
+
+def test_floor_colour_sensor():
+    arena = arenas.goal_arena()
+    world = World(arena, seed=0)
+    gx, gy = arena.landmarks["goal"]
+    obs = world.reset(0, pose=(gx, gy, 0.0))
+    assert obs.floor == 1
+    obs = world.reset(0)
+    assert obs.floor == 0
+
+
+def test_go_to_heading_turns_to_target():
+    world = World(box(300, 300), seed=0)
+    obs = world.reset(0, pose=(150, 150, 0.0))
+    ctl = GoToHeading()
+    for _ in range(30):
+        obs = world.step(ctl.act(obs, obs.pose[2], 2.0))
+    assert math.cos(obs.pose[2] - 2.0) > 0.99
+
+
+def test_kidnap_moves_robot_and_logs():
+    world = World(arenas.two_rooms(), seed=0)
+    world.reset(0)
+    world.place_robot(90, 20, 0.0)
+    assert world.pose[:2] == pytest.approx((90, 20))
+    assert world.events[-1][1] == "kidnap"
+
+
+def test_recording_round_trip(tmp_path):
+    rec = record("two-rooms", 300, seed=0, progress=False,
+                 kidnaps=[(100, (90.0, 20.0, 0.0))])
+    path = rec.save(tmp_path / "r.npz")
+    back = Recording.load(path)
+    for name in ("t", "sensors", "x", "y", "heading", "speed", "floor", "label", "region",
+                 "event_t", "event_kind", "event_detail"):
+        np.testing.assert_array_equal(getattr(back, name), getattr(rec, name))
+    assert back.region_names == rec.region_names and back.arena == rec.arena
+    assert "kidnap" in back.event_kind
+
+
+def test_bad_inputs_give_clear_errors(tmp_path):
+    world = World(arenas.two_rooms(), seed=0)
+    with pytest.raises(ValueError, match="finite"):
+        world.step((float("nan"), 1.0))
+    with pytest.raises(ValueError, match="finite"):
+        world.step((float("inf"), 1.0))
+    with pytest.raises(ValueError, match="overlap a wall"):
+        world.place_robot(30.0, 10.0, 0.0)  # on room A's right wall
+    with pytest.raises(ValueError, match="overlap a wall"):
+        world.reset(0, pose=(1.0, 1.0, 0.0))
+    with pytest.raises(ValueError, match="unknown arena"):
+        arenas.get("three-rooms")
+    with pytest.raises(ValueError, match="unknown sensor"):
+        World(arenas.two_rooms(), sensors="sonar")
+    with pytest.raises(ValueError, match="pair of wheel speeds"):
+        world.step(3.0)
+
+
+def test_corrupt_or_truncated_recording(tmp_path):
+    rec = record("two-rooms", 200, seed=0, progress=False)
+    path = rec.save(tmp_path / "r.npz")
+    data = path.read_bytes()
+    trunc = tmp_path / "trunc.npz"
+    trunc.write_bytes(data[: len(data) // 2])
+    with pytest.raises(CorruptFileError):
+        Recording.load(trunc)
+    junk = tmp_path / "junk.npz"
+    junk.write_bytes(b"not a zip file at all")
+    with pytest.raises(CorruptFileError):
+        Recording.load(junk)
+    other = tmp_path / "other.npz"
+    np.savez(other, a=np.zeros(3))
+    with pytest.raises(CorruptFileError, match="lacks required"):
+        Recording.load(other)
+
+
+def test_failed_save_leaves_nothing(tmp_path):
+    from hippo.io import save_npz
+
+    with pytest.raises(TypeError):
+        save_npz(tmp_path / "x.npz", {"a": np.array([{"x": 1}], dtype=object)})
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_builder_validation():
+    with pytest.raises(ValueError, match="zero length"):
+        ArenaBuilder("a", 10, 10).wall((1, 1), (1, 1))
+    with pytest.raises(ValueError, match="positive"):
+        ArenaBuilder("a", 0, 10)
+    with pytest.raises(ValueError, match="not free"):
+        ArenaBuilder("a", 50, 50).outer_walls().start(1, 1).build()
+
+
+def test_arenas_have_their_labelled_locations():
+    assert len(arenas.two_rooms().locations) == 25
+    assert len(arenas.maze_e1().locations) == 64
+    ga = arenas.goal_arena()
+    (x0, y0, x1, y1) = ga.zones[0].rect
+    # crossing the goal zone at the default speed takes well under the 7 s reward delay
+    assert max(x1 - x0, y1 - y0) / 5.08 < 5.0
+    assert ga.geodesic_distance(ga.start_pose[:2], ga.zones[0].rect) < float("inf")
+    pc = arenas.patrol_course()
+    assert all(pc.is_free(*pc.landmarks[f"checkpoint-{i}"], 6.0) for i in (1, 2, 3))
