@@ -140,6 +140,13 @@ def as_transition(t: Any) -> Transition:
     return state_id(a, "transition start state"), state_id(b, "transition end state")
 
 
+def _xy(state: int, position: Any) -> tuple[float, float]:
+    arr = check_finite(f"position of state {state}", position).ravel()
+    if arr.shape != (2,):
+        raise ValueError(f"position of state {state} must be (x, y), got {position!r}")
+    return float(arr[0]), float(arr[1])
+
+
 def _node_id(t: Transition) -> str:
     return f"{t[0]}->{t[1]}"
 
@@ -159,6 +166,7 @@ class TransitionGraph:
         self._out: dict[int, dict[Transition, None]] = {}
         self._in: dict[int, dict[Transition, None]] = {}
         self._states: dict[int, tuple[float, float] | None] = {}
+        self._pos_n: dict[int, int] = {}  # observations behind each position
         self.version = 0
         self.structure_version = 0
         self._cache: dict[Hashable, Any] = {}
@@ -268,15 +276,25 @@ class TransitionGraph:
     def set_position(self, state: int, position: tuple[float, float] | None) -> None:
         """Store an (x, y) estimate of ``state`` (e.g. from path integration), for figures only."""
         s = state_id(state)
-        if position is None:
-            pos = None
-        else:
-            arr = check_finite(f"position of state {s}", position).ravel()
-            if arr.shape != (2,):
-                raise ValueError(f"position of state {s} must be (x, y), got {position!r}")
-            pos = (float(arr[0]), float(arr[1]))
+        pos = None if position is None else _xy(s, position)
         self._states[s] = pos
+        self._pos_n[s] = 0 if pos is None else 1
         self.version += 1
+
+    def observe_position(self, state: int, position: tuple[float, float]) -> tuple[float, float]:
+        """Fold one more (x, y) estimate of ``state`` into its running-mean position; returns it."""
+        s = state_id(state)
+        x, y = _xy(s, position)
+        n = self._pos_n.get(s, 0) if self._states.get(s) is not None else 0
+        if n == 0:
+            pos = (x, y)
+        else:
+            px, py = self._states[s]  # type: ignore[misc]
+            pos = (px + (x - px) / (n + 1), py + (y - py) / (n + 1))
+        self._states[s] = pos
+        self._pos_n[s] = n + 1
+        self.version += 1
+        return pos
 
     def position(self, state: int) -> tuple[float, float] | None:
         return self._states[self._check_state(state)]
@@ -417,7 +435,8 @@ class TransitionGraph:
         h = nx.DiGraph()
         h.graph["format"] = GRAPHML_FORMAT
         h.graph["states"] = json.dumps(
-            [[s, None, None] if p is None else [s, p[0], p[1]] for s, p in self._states.items()])
+            [[s, None, None, 0] if p is None else [s, p[0], p[1], self._pos_n.get(s, 1)]
+             for s, p in self._states.items()])
         for t, d in self._g.nodes(data=True):
             attrs: dict[str, Any] = {}
             for k in _INT_ATTRS:
@@ -446,8 +465,9 @@ class TransitionGraph:
                 f"{path} is not a hippo transition graph (format {h.graph.get('format')!r})")
         g = cls()
         try:
-            for s, x, y in json.loads(h.graph.get("states", "[]")):
+            for s, x, y, n in json.loads(h.graph.get("states", "[]")):
                 g._states[state_id(s)] = None if x is None else (float(x), float(y))
+                g._pos_n[state_id(s)] = int(n)
             for nid, d in h.nodes(data=True):
                 attrs: dict[str, Any] = {k: int(d[k]) for k in _INT_ATTRS}
                 attrs["action"] = str(d["action"])
@@ -474,6 +494,8 @@ class TransitionGraph:
     def same_as(self, other: TransitionGraph) -> bool:
         """True when both maps hold the same transitions, links, attributes and states."""
         return (self._states == other._states
+                and self.positions.keys() == other.positions.keys()
+                and all(self._pos_n.get(s) == other._pos_n.get(s) for s in self.positions)
                 and dict(self._g.nodes(data=True)) == dict(other._g.nodes(data=True))
                 and set(self._g.edges) == set(other._g.edges))
 

@@ -110,6 +110,10 @@ def test_positions_and_states():
         g.set_position(8, (1.0, 2.0, 3.0))
     with pytest.raises(KeyError, match="unknown state 9"):
         g.position(9)
+    assert g.observe_position(8, (2.0, 4.0)) == (2.0, 4.0)
+    g.observe_position(8, (4.0, 0.0))
+    assert g.observe_position(8, (6.0, 2.0)) == pytest.approx((4.0, 2.0))  # running mean
+    assert g.observe_position(7, (3.5, 0.0)) == pytest.approx((2.5, -1.0))  # set counts once
 
 
 def test_structure_version_grows_on_structural_changes_only():
@@ -155,6 +159,8 @@ def test_graphml_round_trip_keeps_every_attribute(tmp_path):
     g.add_state(99)  # a state without transitions or position
     for s in range(10):
         g.set_position(s, (float(rng.normal()), float(rng.normal()) * 1e-7))
+    g.observe_position(12, (1.0, 2.0))
+    g.observe_position(12, (2.0, 3.0))
     g.decay(0.9)
     path = g.to_graphml(tmp_path / "map.graphml")
     assert [p.name for p in tmp_path.iterdir()] == ["map.graphml"]  # no temp file left
@@ -168,6 +174,7 @@ def test_graphml_round_trip_keeps_every_attribute(tmp_path):
             assert a[k] == b[k] and type(a[k]) is type(b[k]), (t, k)
     assert h.attributes((20, 21))["delay"] is None and h.action((20, 21)).is_wait
     assert h.position(99) is None and h.positions == g.positions
+    assert h.observe_position(12, (4.5, 5.5)) == g.observe_position(12, (4.5, 5.5)) == (2.5, 3.5)
 
 
 def test_graphml_bad_files(tmp_path):

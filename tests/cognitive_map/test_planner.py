@@ -316,3 +316,39 @@ def test_empty_graph_and_no_goals():
     g = corridor(3)
     for method in METHODS:
         assert not propagate(g, Drives(["x"]), 0.9, method=method).values.any()
+
+
+def test_agent_flow_learn_by_exploring_then_go_to_the_rewarded_place():
+    """The agent's loop: explore (random walk) -> add transitions -> reward links the drive ->
+    the drive builds up -> choices follow the map to the goal by a shortest path."""
+    world = grid(5)[1]  # the true corridors between places (ids 0..24, 12 = centre)
+    rng = np.random.default_rng(4)
+    g = TransitionGraph()
+    drives = Drives({"food": DriveParams(epsilon=0.5, learning_rate=1.0)})
+    planner = Planner(PlannerParams(w=0.9, noise=0.01))
+    food_place, s, last = 12, 0, None
+    g.add_state(s)
+    for _ in range(3000):  # exploration: the drive is satisfied at each visit, so stays low
+        nxt = int(rng.choice(list(world[s])))
+        last = g.add_transition(s, nxt, (0.0, 20.0), 1.0)
+        s = nxt
+        if s == food_place:
+            drives.reward("food", last)
+        drives.step(0.01)
+    assert len(g) == 2 * world.number_of_edges()  # every corridor learned both ways
+    goals = set(drives.links("food"))
+    assert goals == {(x, food_place) for x in world[food_place]}
+    for _ in range(100):
+        drives.step(0.2)
+    assert drives.level("food") > 0.99
+    for start in (0, 4, 20, 24, 7):
+        s, hops = start, 0
+        while True:
+            t = planner.choose(g, drives, s, rng)
+            hops += 1
+            s = t[1]
+            if s == food_place:
+                break
+        assert hops == nx.shortest_path_length(world, start, food_place)
+    drives.step(0.2, inhibited={"food"})  # non-occurrence: back to exploration
+    assert planner.decide(g, drives, 0, rng).explored
