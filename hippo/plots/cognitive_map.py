@@ -62,7 +62,7 @@ def plot_cognitive_map(graph: TransitionGraph, activity: Activity | Mapping[Tran
     labels:    write state ids (default: when there are at most 60 states).
     """
     if ax is None:
-        fig = Figure(figsize=(6, 6))
+        fig = Figure(figsize=(6.5, 6.5), layout="constrained")
         ax = fig.add_subplot(1, 1, 1)
     else:
         fig = ax.figure
