@@ -152,45 +152,65 @@ class Arena:
         free = (dmin >= radius + self.wall_radius) & inside
         return xs, ys, free.reshape(gx.shape)
 
-    def geodesic_distance(self, start: Point, goal_rect: Rect | Point, radius: float = 3.7,
-                          cell: float = 2.0) -> float:
-        """Shortest collision-free path length (cm) from ``start`` to a point or rectangle.
+    def shortest_path(self, start: Point, goal: Rect | Point, radius: float = 3.7,
+                      cell: float = 2.0, clearance: float = 3.0) -> tuple[float, list[Point]]:
+        """Shortest collision-free path from ``start`` to a point or rectangle.
 
-        Dijkstra on an 8-connected grid of free cells; ``inf`` if unreachable.
+        Dijkstra on an 8-connected grid of cells where a disc of ``radius + clearance`` fits
+        (cells where only ``radius`` fits are allowed at a cost penalty, so paths keep off walls
+        when they can). Returns (length in cm, waypoints); (inf, []) if unreachable.
         """
         xs, ys, free = self.free_grid(radius, cell)
+        _, _, roomy = self.free_grid(radius + clearance, cell)
         nx, ny = free.shape
 
         def idx(p: Point) -> tuple[int, int]:
-            return (int(np.clip(np.argmin(np.abs(xs - p[0])), 0, nx - 1)),
-                    int(np.clip(np.argmin(np.abs(ys - p[1])), 0, ny - 1)))
+            return int(np.argmin(np.abs(xs - p[0]))), int(np.argmin(np.abs(ys - p[1])))
 
-        if len(goal_rect) == 2:
-            gi = idx(goal_rect)  # type: ignore[arg-type]
-            goal = np.zeros_like(free)
-            goal[gi] = True
+        if len(goal) == 2:
+            goal_mask = np.zeros_like(free)
+            goal_mask[idx(goal)] = True  # type: ignore[arg-type]
         else:
-            x0, y0, x1, y1 = goal_rect  # type: ignore[misc]
-            goal = ((xs[:, None] >= x0) & (xs[:, None] <= x1)
-                    & (ys[None, :] >= y0) & (ys[None, :] <= y1)) & free
+            x0, y0, x1, y1 = goal  # type: ignore[misc]
+            goal_mask = ((xs[:, None] >= x0) & (xs[:, None] <= x1)
+                         & (ys[None, :] >= y0) & (ys[None, :] <= y1)) & free
         si = idx(start)
         dist = np.full(free.shape, np.inf)
-        dist[si] = 0.0
+        length = np.full(free.shape, np.inf)
+        prev: dict[tuple[int, int], tuple[int, int]] = {}
+        dist[si] = length[si] = 0.0
         heap = [(0.0, si)]
-        steps = [(dx, dy, cell * np.hypot(dx, dy)) for dx in (-1, 0, 1) for dy in (-1, 0, 1)
-                 if dx or dy]
+        steps = [(dx, dy, cell * float(np.hypot(dx, dy))) for dx in (-1, 0, 1)
+                 for dy in (-1, 0, 1) if dx or dy]
+        end = None
         while heap:
             d, (i, j) = heapq.heappop(heap)
             if d > dist[i, j]:
                 continue
-            if goal[i, j]:
-                return float(d)
+            if goal_mask[i, j]:
+                end = (i, j)
+                break
             for dx, dy, c in steps:
                 a, b = i + dx, j + dy
-                if 0 <= a < nx and 0 <= b < ny and free[a, b] and d + c < dist[a, b]:
-                    dist[a, b] = d + c
-                    heapq.heappush(heap, (d + c, (a, b)))
-        return float("inf")
+                if 0 <= a < nx and 0 <= b < ny and free[a, b]:
+                    cost = c if roomy[a, b] else 3 * c
+                    if d + cost < dist[a, b]:
+                        dist[a, b] = d + cost
+                        length[a, b] = length[i, j] + c
+                        prev[(a, b)] = (i, j)
+                        heapq.heappush(heap, (d + cost, (a, b)))
+        if end is None:
+            return float("inf"), []
+        path = [end]
+        while path[-1] != si:
+            path.append(prev[path[-1]])
+        pts = [(float(xs[i]), float(ys[j])) for i, j in reversed(path)]
+        return float(length[end]), pts[::3] + ([pts[-1]] if (len(pts) - 1) % 3 else [])
+
+    def geodesic_distance(self, start: Point, goal_rect: Rect | Point, radius: float = 3.7,
+                          cell: float = 2.0) -> float:
+        """Length (cm) of the shortest collision-free path (``inf`` if unreachable)."""
+        return self.shortest_path(start, goal_rect, radius, cell, clearance=0.0)[0]
 
     def sample_free_pose(self, rng: np.random.Generator, radius: float = 3.7,
                          margin: float = 2.0, rect: Rect | None = None) -> tuple[float, float,
