@@ -1,0 +1,282 @@
+"""Place-cell quality from a recording: place fields, localization, decoding, room cells,
+recovery after kidnapping.
+
+Labels (the nearest reference location, the region) and positions are used **only for
+analysis**, never to learn the place cells. Whenever a read-out must be chosen (which unit is
+the room cell, which location a unit stands for), it is chosen on the training part and scored
+on the test part.
+
+Units are assumed unit-variance on the training data (RCSFAICA outputs are), so thresholds such
+as ICANN09's 4.5 are in training standard deviations.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from hippo._checks import check_finite
+
+#: ICANN09: "ICA units which do not respond strongly enough (that is, less than 4.5) ..."
+ICANN09_THRESHOLD = 4.5
+
+
+def _check_Y(Y: np.ndarray, T: int | None = None, name: str = "Y") -> np.ndarray:
+    Y = np.asarray(Y, dtype=float)
+    if Y.ndim == 1:
+        Y = Y[:, None]
+    if Y.ndim != 2:
+        raise ValueError(f"{name} must be (T, units), got shape {Y.shape}")
+    if T is not None and Y.shape[0] != T:
+        raise ValueError(f"{name} has {Y.shape[0]} rows, expected {T}")
+    return check_finite(name, Y)
+
+
+def _check_labels(labels: np.ndarray, n: int | None = None) -> np.ndarray:
+    lab = np.asarray(labels)
+    if lab.ndim != 1 or not np.issubdtype(lab.dtype, np.integer):
+        raise ValueError(f"labels must be a 1-D integer array, got {lab.dtype} {lab.shape}")
+    if n is not None and lab.size and (lab.min() < 0 or lab.max() >= n):
+        raise ValueError(f"labels must lie in [0, {n}), got {lab.min()}..{lab.max()}")
+    return lab
+
+
+# ---------------------------------------------------------------------------- place fields
+def place_fields_grid(xy: np.ndarray, Y: np.ndarray, *, bins: int | tuple[int, int] = 30,
+                      extent: tuple[float, float, float, float] | None = None
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Mean response of each unit on a spatial grid.
+
+    Returns ``fields`` (units, ny, nx) (NaN where the robot never was), ``occupancy`` (ny, nx)
+    in samples, and the bin edges ``xedges``, ``yedges``. ``extent`` is (xmin, xmax, ymin, ymax).
+    """
+    xy = check_finite("xy", xy)
+    if xy.ndim != 2 or xy.shape[1] != 2:
+        raise ValueError(f"xy must be (T, 2), got {xy.shape}")
+    Y = _check_Y(Y, xy.shape[0])
+    if extent is None:
+        extent = (xy[:, 0].min(), xy[:, 0].max() + 1e-9, xy[:, 1].min(), xy[:, 1].max() + 1e-9)
+    nx, ny = (bins, bins) if np.ndim(bins) == 0 else bins
+    xe = np.linspace(extent[0], extent[1], int(nx) + 1)
+    ye = np.linspace(extent[2], extent[3], int(ny) + 1)
+    ix = np.clip(np.searchsorted(xe, xy[:, 0], side="right") - 1, 0, int(nx) - 1)
+    iy = np.clip(np.searchsorted(ye, xy[:, 1], side="right") - 1, 0, int(ny) - 1)
+    flat = iy * int(nx) + ix
+    occ = np.bincount(flat, minlength=int(nx) * int(ny)).astype(float)
+    sums = np.stack([np.bincount(flat, weights=Y[:, k], minlength=occ.size)
+                     for k in range(Y.shape[1])])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        fields = np.where(occ > 0, sums / occ, np.nan)
+    return fields.reshape(Y.shape[1], int(ny), int(nx)), occ.reshape(int(ny), int(nx)), xe, ye
+
+
+def place_fields_locations(labels: np.ndarray, Y: np.ndarray, n_locations: int) -> np.ndarray:
+    """Mean response of each unit at each labelled location: (n_locations, units), NaN if the
+    location was never visited."""
+    lab = _check_labels(labels, n_locations)
+    Y = _check_Y(Y, lab.size)
+    cnt = np.bincount(lab, minlength=n_locations).astype(float)
+    sums = np.stack([np.bincount(lab, weights=Y[:, k], minlength=n_locations)
+                     for k in range(Y.shape[1])], axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(cnt[:, None] > 0, sums / cnt[:, None], np.nan)
+
+
+def location_neighbors(locations: np.ndarray, radius: float | None = None) -> np.ndarray:
+    """Boolean (L, L) matrix: locations within ``radius`` of each other (diagonal included).
+
+    Default radius: 1.5 × the median nearest-neighbour distance between reference locations,
+    i.e. "one step" between adjacent labelled locations.
+    """
+    loc = check_finite("locations", locations)
+    if loc.ndim != 2 or loc.shape[1] != 2:
+        raise ValueError(f"locations must be (L, 2), got {loc.shape}")
+    d = np.linalg.norm(loc[:, None, :] - loc[None, :, :], axis=-1)
+    if radius is None:
+        if loc.shape[0] < 2:
+            return np.ones((loc.shape[0],) * 2, bool)
+        nn = np.sort(d, axis=1)[:, 1]
+        radius = 1.5 * float(np.median(nn))
+    return d <= radius
+
+
+# ---------------------------------------------------------------------------- localization
+@dataclass
+class Localization:
+    """Per-unit localization (ICANN09 criterion), see :func:`localized_units`."""
+
+    localized: np.ndarray       # (units,) bool
+    peak: np.ndarray            # (units,) max response
+    preferred: np.ndarray       # (units,) location with most supra-threshold samples (-1: none)
+    concentration: np.ndarray   # (units,) fraction of supra-threshold samples near `preferred`
+    n_active: np.ndarray        # (units,) number of supra-threshold samples
+
+    @property
+    def count(self) -> int:
+        return int(self.localized.sum())
+
+
+def localized_units(Y: np.ndarray, labels: np.ndarray, neighbors: np.ndarray, *,
+                    threshold: float = ICANN09_THRESHOLD, min_concentration: float = 0.5,
+                    min_samples: int = 3) -> Localization:
+    """Which units are place cells (ICANN09): they respond ``>= threshold`` somewhere **and**
+    code one location.
+
+    "Codes one location" is made precise as: among the samples where the unit is at or above
+    ``threshold``, at least ``min_concentration`` lie at the unit's preferred location (the most
+    frequent label among them) or one step from it (``neighbors``), and there are at least
+    ``min_samples`` such samples. A unit with a high peak that fires at several distant places
+    (perceptual aliasing) is therefore not counted.
+    """
+    nb = np.asarray(neighbors, dtype=bool)
+    if nb.ndim != 2 or nb.shape[0] != nb.shape[1]:
+        raise ValueError(f"neighbors must be a square boolean matrix, got {nb.shape}")
+    lab = _check_labels(labels, nb.shape[0])
+    Y = _check_Y(Y, lab.size)
+    k = Y.shape[1]
+    peak = Y.max(axis=0) if Y.shape[0] else np.full(k, -np.inf)
+    pref = np.full(k, -1)
+    conc = np.zeros(k)
+    n_act = np.zeros(k, int)
+    for j in range(k):
+        act = Y[:, j] >= threshold
+        n_act[j] = int(act.sum())
+        if n_act[j] == 0:
+            continue
+        counts = np.bincount(lab[act], minlength=nb.shape[0])
+        pref[j] = int(np.argmax(counts))
+        conc[j] = counts[nb[pref[j]]].sum() / n_act[j]
+    loc = (peak >= threshold) & (n_act >= min_samples) & (conc >= min_concentration)
+    return Localization(loc, peak, pref, conc, n_act)
+
+
+def spatial_order(Y: np.ndarray, labels: np.ndarray, n_locations: int, *,
+                  threshold: float = ICANN09_THRESHOLD) -> np.ndarray:
+    """ICANN09's ordering of units for the activation map: by the location of their peak mean
+    response; units that never reach ``threshold`` go to the end."""
+    fields = place_fields_locations(labels, Y, n_locations)
+    pref = np.nanargmax(np.where(np.isnan(fields), -np.inf, fields), axis=0)
+    strong = np.asarray(Y).max(axis=0) >= threshold
+    key = np.where(strong, pref, n_locations + pref)
+    return np.argsort(key, kind="stable")
+
+
+# ---------------------------------------------------------------------------- decoding
+def fit_winner_decoder(Y: np.ndarray, labels: np.ndarray, n_locations: int) -> np.ndarray:
+    """Map each unit to the location where it most often wins (argmax over units), learned on
+    training data. Units that never win map to the most frequent location overall."""
+    lab = _check_labels(labels, n_locations)
+    Y = _check_Y(Y, lab.size)
+    win = np.argmax(Y, axis=1)
+    k = Y.shape[1]
+    table = np.zeros((k, n_locations), int)
+    np.add.at(table, (win, lab), 1)
+    fallback = int(np.argmax(np.bincount(lab, minlength=n_locations))) if lab.size else 0
+    return np.where(table.sum(axis=1) > 0, np.argmax(table, axis=1), fallback)
+
+
+def decode_locations(Y: np.ndarray, mapping: np.ndarray) -> np.ndarray:
+    """Decoded location per sample: the location of the winning unit."""
+    Y = _check_Y(Y)
+    return np.asarray(mapping)[np.argmax(Y, axis=1)]
+
+
+def decoding_accuracy(Y: np.ndarray, labels: np.ndarray, mapping: np.ndarray,
+                      neighbors: np.ndarray | None = None) -> tuple[float, float]:
+    """(exact, within-one-step) accuracy of the winner decoder on ``Y`` (e.g. test data)."""
+    lab = _check_labels(labels)
+    pred = decode_locations(_check_Y(Y, lab.size), mapping)
+    exact = float(np.mean(pred == lab)) if lab.size else float("nan")
+    if neighbors is None:
+        return exact, exact
+    near = float(np.mean(np.asarray(neighbors)[pred, lab])) if lab.size else float("nan")
+    return exact, near
+
+
+# ---------------------------------------------------------------------------- binary cells
+def balanced_accuracy(pred: np.ndarray, truth: np.ndarray) -> float:
+    """Mean of the true-positive and true-negative rates (0.5 = chance)."""
+    pred = np.asarray(pred, bool)
+    truth = np.asarray(truth, bool)
+    if pred.shape != truth.shape:
+        raise ValueError(f"pred {pred.shape} and truth {truth.shape} differ in shape")
+    pos, neg = truth.sum(), (~truth).sum()
+    if pos == 0 or neg == 0:
+        return float("nan")
+    return 0.5 * (float((pred & truth).sum()) / pos + float((~pred & ~truth).sum()) / neg)
+
+
+@dataclass
+class BinaryCell:
+    """A unit read as a detector: ``polarity * (y[unit] - threshold) > 0`` means "inside"."""
+
+    unit: int
+    threshold: float
+    polarity: int
+    train_balanced_accuracy: float
+
+    def predict(self, Y: np.ndarray) -> np.ndarray:
+        Y = _check_Y(Y)
+        return self.polarity * (Y[:, self.unit] - self.threshold) > 0
+
+
+def _best_threshold(y: np.ndarray, truth: np.ndarray) -> tuple[float, float]:
+    """Threshold maximising balanced accuracy of ``y > thr`` for ``truth``."""
+    order = np.argsort(y, kind="stable")
+    ys, ts = y[order], truth[order]
+    pos, neg = ts.sum(), (~ts).sum()
+    # predicting positive for samples strictly above position i
+    tn = np.concatenate([[0], np.cumsum(~ts)])        # negatives at or below the cut
+    fn = np.concatenate([[0], np.cumsum(ts)])
+    bacc = 0.5 * ((pos - fn) / pos + tn / neg)
+    # only cut between distinct values
+    valid = np.concatenate([[True], ys[1:] != ys[:-1], [True]])
+    bacc = np.where(valid, bacc, -np.inf)
+    i = int(np.argmax(bacc))
+    lo = ys[i - 1] if i > 0 else ys[0] - 1.0
+    hi = ys[i] if i < ys.size else ys[-1] + 1.0
+    return 0.5 * (lo + hi), float(bacc[i])
+
+
+def fit_binary_cell(Y: np.ndarray, truth: np.ndarray, mask: np.ndarray | None = None,
+                    units: np.ndarray | None = None) -> BinaryCell:
+    """Choose, on training data, the unit, threshold and sign that best detect ``truth``
+    (balanced accuracy). ``mask`` restricts the samples used (e.g. rooms only, no corridor)."""
+    Y = _check_Y(Y)
+    truth = np.asarray(truth, bool)
+    if truth.shape != (Y.shape[0],):
+        raise ValueError(f"truth must have shape ({Y.shape[0]},), got {truth.shape}")
+    m = np.ones(Y.shape[0], bool) if mask is None else np.asarray(mask, bool)
+    Ym, tm = Y[m], truth[m]
+    if tm.all() or not tm.any():
+        raise ValueError("truth needs both classes among the selected training samples")
+    best = None
+    for j in (range(Y.shape[1]) if units is None else units):
+        for pol in (1, -1):
+            thr, bacc = _best_threshold(pol * Ym[:, j], tm)
+            if best is None or bacc > best.train_balanced_accuracy:
+                best = BinaryCell(int(j), pol * thr, pol, bacc)
+    return best
+
+
+# ---------------------------------------------------------------------------- kidnapping
+def recovery_times(correct: np.ndarray, events: np.ndarray, *, hold: int = 5,
+                   horizon: np.ndarray | int | None = None) -> np.ndarray:
+    """Ticks from each event until the read-out is right again and stays right for ``hold``
+    consecutive ticks. ``correct`` is a boolean series (T,); ``events`` tick indices. The search
+    for event ``i`` stops at the next event (or ``horizon`` ticks later); if it never recovers,
+    the result is NaN."""
+    correct = np.asarray(correct, bool)
+    ev = np.asarray(events, int)
+    T = correct.size
+    out = np.full(ev.size, np.nan)
+    for i, e in enumerate(ev):
+        stop = ev[i + 1] if i + 1 < ev.size else T
+        if horizon is not None:
+            stop = min(stop, e + int(np.atleast_1d(horizon)[min(i, np.size(horizon) - 1)]))
+        for r in range(0, max(stop - e - hold + 1, 0)):
+            if correct[e + r: e + r + hold].all():
+                out[i] = r
+                break
+    return out

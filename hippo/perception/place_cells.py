@@ -1,0 +1,416 @@
+"""RC-SFA-ICA: place cells that learn themselves from distance sensors (SMC09, ICANN09).
+
+Three layers (SMC09 Fig. 1), only the upper two learn, one after the other:
+
+    x(t+1)   = tanh((1-a) x(t) + a (W_in u(t) + W_res x(t)))     reservoir   (eq. 1)
+    y_sfa(t) = W_sfaᵀ z([u(t); x(t+1)])                          linear SFA  (eq. 6-7)
+    y_ica(t) = W_ica (y_sfa(t) - μ)                               FastICA     (eq. 8-10)
+
+(``z`` is the z-scoring learned on the training data.) The estimator follows scikit-learn:
+``__init__`` only stores parameters, :meth:`RCSFAICA.fit` learns, fitted attributes end in
+``_``, :meth:`RCSFAICA.transform` runs a whole recording offline from ``x(0) = 0``. For the
+closed loop, :meth:`RCSFAICA.step` takes one sensor vector per control tick and returns the
+place-cell activities; after :meth:`RCSFAICA.reset_state`, stepping through ``U`` reproduces
+``transform(U)`` to float rounding.
+
+Output scale: ICA outputs are **unit variance on the training data** (``output_std_`` = 1), so
+units are comparable with each other and ICANN09's "responds ≥ 4.5" reads as 4.5 training
+standard deviations. ``output_peak_`` (each unit's 99.9th percentile on the training data) lets
+a state layer normalise activities to roughly [.., 1].
+
+Optional input down-sampling (``downsample > 1``, ICANN09: 50) uses a causal anti-aliasing
+FIR (:mod:`hippo.perception.resample`); the reservoir then ticks once per ``downsample`` inputs
+and outputs are held in between.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass, fields, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import torch
+
+from hippo._checks import check_finite
+from hippo.io import CorruptFileError, load_npz, save_npz
+from hippo.perception.ica import FastICA, ICAParams
+from hippo.perception.resample import Decimator, hold
+from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
+from hippo.perception.sfa import SFA, SFAParams
+
+FORMAT = "hippo.perception.RCSFAICA/1"
+
+
+@dataclass(frozen=True)
+class RCSFAICAParams:
+    """All hyper-parameters of the three layers; defaults are SMC09's (:meth:`RCSFAICA.smc09`)."""
+
+    # input
+    n_inputs: int = 8
+    downsample: int = 1
+    # reservoir (SMC09 eq. 1)
+    use_reservoir: bool = True
+    n_reservoir: int = 600
+    leak: float | tuple[float, ...] = (0.05, 0.15)
+    spectral_radius: float = 0.99
+    input_weight: float = 2.0
+    input_prob: float = 0.075
+    # SFA (eq. 2-7)
+    n_sfa: int = 4
+    sfa_cutoff: float | str = 1e-8
+    sfa_expansion: str = "linear"
+    # ICA (eq. 8-10)
+    n_ica: int = 4
+    ica_algorithm: str = "symmetric"
+    ica_restarts: int = 10
+    ica_score: str = "kurtosis"
+    ica_max_iter: int = 1000
+    ica_tol: float = 1e-6
+    # training
+    washout: int = 0
+    seed: int = 0
+    dtype: str = "float32"
+    device: str = "cpu"
+
+    def __post_init__(self) -> None:
+        if isinstance(self.leak, list):
+            object.__setattr__(self, "leak", tuple(self.leak))
+        if int(self.n_inputs) < 1:
+            raise ValueError(f"n_inputs must be >= 1, got {self.n_inputs}")
+        if int(self.downsample) < 1:
+            raise ValueError(f"downsample must be >= 1, got {self.downsample}")
+        if int(self.washout) < 0:
+            raise ValueError(f"washout must be >= 0, got {self.washout}")
+        if int(self.n_ica) > int(self.n_sfa):
+            raise ValueError(f"n_ica={self.n_ica} exceeds n_sfa={self.n_sfa}")
+        # delegate the remaining checks to the layers' own parameter classes
+        self.reservoir_params()
+        self.sfa_params()
+        self.ica_params()
+
+    def reservoir_params(self) -> ReservoirParams:
+        return ReservoirParams(n_inputs=self.n_inputs, n_neurons=self.n_reservoir,
+                               spectral_radius=self.spectral_radius, leak=self.leak,
+                               input_weight=self.input_weight, input_prob=self.input_prob,
+                               seed=self.seed)
+
+    def sfa_params(self) -> SFAParams:
+        return SFAParams(n_components=self.n_sfa, cutoff=self.sfa_cutoff,
+                         expansion=self.sfa_expansion)
+
+    def ica_params(self) -> ICAParams:
+        return ICAParams(n_components=self.n_ica, algorithm=self.ica_algorithm,
+                         max_iter=self.ica_max_iter, tol=self.ica_tol,
+                         n_restarts=self.ica_restarts, score=self.ica_score, seed=self.seed)
+
+
+#: SMC09 (e-puck, 8 IR sensors, two rooms): 600 neurons, leaks 0.05/0.15, ρ 0.99, W_in ±2 p 0.075
+SMC09 = RCSFAICAParams()
+#: ICANN09 (17 distance sensors, maze E1): 400 neurons, leak 0.6, ρ 0.9, W_in ±0.2 p 0.15,
+#: 70 SFA / 70 ICA units, input down-sampled by 50
+ICANN09 = RCSFAICAParams(n_inputs=17, downsample=50, n_reservoir=400, leak=0.6,
+                         spectral_radius=0.9, input_weight=0.2, input_prob=0.15,
+                         n_sfa=70, n_ica=70)
+
+
+class RCSFAICA:
+    """Reservoir → linear SFA → FastICA place cells (SMC09 Fig. 1; ICANN09 Fig. 1).
+
+    ``RCSFAICA(params, **overrides)`` stores ``params`` (a :class:`RCSFAICAParams`, default
+    SMC09) with ``overrides`` applied. Use :meth:`smc09` / :meth:`icann09` for the papers'
+    settings.
+
+    Fitted attributes: ``reservoir_`` (:class:`Reservoir` or None), ``sfa_`` (:class:`SFA`),
+    ``ica_`` (:class:`FastICA`), ``n_features_in_``, ``output_std_``, ``output_peak_``,
+    ``sfa_slowness_`` (Δ of each SFA unit).
+
+    Example (closed loop)::
+
+        pc = RCSFAICA.smc09(seed=1).fit(recording.sensors)    # (T, 8) exploration run
+        pc.reset_state()
+        for obs in world:                                     # one control tick each
+            activity = pc.step(obs.ir)                        # (n_ica,), unit-variance units
+    """
+
+    def __init__(self, params: RCSFAICAParams | None = None, **overrides: Any) -> None:
+        self.params = replace(params or RCSFAICAParams(), **overrides)
+
+    @classmethod
+    def smc09(cls, **overrides: Any) -> RCSFAICA:
+        """SMC09 settings (two rooms, e-puck IR): see :data:`SMC09`."""
+        return cls(SMC09, **overrides)
+
+    @classmethod
+    def icann09(cls, **overrides: Any) -> RCSFAICA:
+        """ICANN09 settings (maze E1, 17 sensors): see :data:`ICANN09`."""
+        return cls(ICANN09, **overrides)
+
+    def get_params(self) -> dict[str, Any]:
+        return asdict(self.params)
+
+    # ------------------------------------------------------------------ input handling
+    def _check_U(self, U: Any) -> np.ndarray:
+        U = np.asarray(U)
+        n = self.params.n_inputs
+        if U.ndim != 2 or U.shape[1] != n:
+            raise ValueError(f"sensor sequence U must have shape (T, {n}), got {U.shape}")
+        if not np.issubdtype(U.dtype, np.number) or np.issubdtype(U.dtype, np.complexfloating):
+            raise ValueError(f"sensor sequence U must be real numbers, got dtype {U.dtype}")
+        return check_finite("sensor sequence U", U)
+
+    def features(self, U: np.ndarray, *, downsampled: bool = False) -> np.ndarray:
+        """SFA input ``[u(t); x(t+1)]`` for a recording ``U`` (at the down-sampled rate),
+        from ``x(0) = 0``. Set ``downsampled=True`` if ``U`` is already down-sampled."""
+        U = self._check_U(U)
+        Ud = U if downsampled else self._decimator().offline(U)
+        if self.reservoir_ is None:
+            return Ud
+        X = self.reservoir_.run(Ud).cpu().numpy()
+        return np.concatenate([Ud.astype(X.dtype), X], axis=1)
+
+    def _decimator(self) -> Decimator:
+        return Decimator(int(self.params.downsample))
+
+    def _build_reservoir(self) -> Reservoir | None:
+        p = self.params
+        if not p.use_reservoir:
+            return None
+        return Reservoir(p.reservoir_params(), dtype=p.dtype, device=p.device)
+
+    # ------------------------------------------------------------------ learning
+    def fit(self, U: np.ndarray) -> RCSFAICA:
+        """Learn SFA then ICA on a recording ``U`` (T, n_inputs) of sensor values."""
+        U = self._check_U(U)
+        p = self.params
+        need = (p.washout + 3) * p.downsample
+        if U.shape[0] < need:
+            raise ValueError(f"U has {U.shape[0]} ticks; at least {need} are needed "
+                             f"(washout {p.washout}, downsample {p.downsample})")
+        self.reservoir_ = self._build_reservoir()
+        self.n_features_in_ = p.n_inputs
+        X = self.features(U)
+        return self._fit_features(X)
+
+    def _fit_features(self, X: np.ndarray) -> RCSFAICA:
+        p = self.params
+        X = X[p.washout:]
+        self.sfa_ = SFA(p.sfa_params())
+        Y = self.sfa_.fit_transform(X)
+        self.sfa_slowness_ = self.sfa_.slowness_.copy()
+        self.ica_ = FastICA(p.ica_params())
+        S = self.ica_.fit_transform(Y)
+        self.output_std_ = S.std(axis=0)
+        self.output_peak_ = np.percentile(S, 99.9, axis=0)
+        self._compile()
+        self.reset_state()
+        return self
+
+    def _compile(self) -> None:
+        """Fold SFA and ICA into one affine readout of the feature vector (linear case)."""
+        d = self.sfa_.n_features_in_
+        if self.params.sfa_expansion == "linear":
+            M, b = self.sfa_.affine()
+            C = self.ica_.components_.T
+            self._R = np.ascontiguousarray(M @ C)
+            self._r0 = (b - self.ica_.mean_) @ C
+            self._y_init = self._r0.copy()
+        else:
+            self._R = None
+            self._r0 = None
+            self._y_init = self._readout(np.zeros((1, d)))[0]
+
+    def _readout(self, X: np.ndarray, return_sfa: bool = False):
+        Y = self.sfa_.transform(X)
+        S = self.ica_.transform(Y)
+        return (S, Y) if return_sfa else S
+
+    # ------------------------------------------------------------------ offline
+    def transform(self, U: np.ndarray, *, return_sfa: bool = False):
+        """Place-cell activities ``(T, n_ica)`` for a recording ``U`` (T, n_inputs), run from a
+        zero reservoir state (the online state is untouched). With ``return_sfa`` also the SFA
+        outputs ``(T, n_sfa)``. With down-sampling, outputs are held between updates."""
+        self._check_fitted()
+        U = self._check_U(U)
+        X = self.features(U)
+        S, Y = self._readout(X, return_sfa=True)
+        f = int(self.params.downsample)
+        if f > 1:
+            T = U.shape[0]
+            S = hold(S, T, f, self._y_init)
+            y0 = self.sfa_.transform(np.zeros((1, X.shape[1])))[0]
+            Y = hold(Y, T, f, y0)
+        return (S, Y) if return_sfa else S
+
+    def fit_transform(self, U: np.ndarray, **kw: Any):
+        return self.fit(U).transform(U, **kw)
+
+    # ------------------------------------------------------------------ online
+    def reset_state(self) -> None:
+        """Start the online loop afresh: reservoir state 0, empty down-sampling history."""
+        self._check_fitted()
+        if self.reservoir_ is not None:
+            self.reservoir_.reset()
+        self._dec = self._decimator()
+        self._last = self._y_init.copy()
+
+    def step(self, u: np.ndarray) -> np.ndarray:
+        """One control tick: feed the sensor vector ``u`` (n_inputs,), return the place-cell
+        activities (n_ica,) (a new array)."""
+        self._check_fitted()
+        n = self.params.n_inputs
+        u = np.asarray(u, dtype=float)
+        if u.shape != (n,):
+            raise ValueError(f"sensor vector u must have shape ({n},), got {u.shape}")
+        if not np.isfinite(u).all():
+            raise ValueError("sensor vector u contains NaN or inf")
+        if self.params.downsample > 1:
+            ud = self._dec.push(u)
+            if ud is None:
+                return self._last.copy()
+            u = ud
+        res = self.reservoir_
+        if res is not None and self._R is not None:
+            z = res._mirror.z
+            z[: res.n_inputs] = u
+            res._advance()
+            out = z @ self._R + self._r0
+        else:
+            z = u if res is None else np.concatenate([u, res.step(u)])
+            out = self._readout(z[None, :])[0]
+        self._last = out
+        return out.copy()
+
+    # ------------------------------------------------------------------ persistence
+    def save(self, path: str | os.PathLike) -> Path:
+        """Write the fitted model to ``path`` (.npz, atomic, no pickle)."""
+        self._check_fitted()
+        arrays: dict[str, Any] = {
+            "format": np.array(FORMAT),
+            "params": np.array(json.dumps(asdict(self.params))),
+            "sfa_mean": self.sfa_.mean_, "sfa_scale": self.sfa_.scale_, "sfa_W": self.sfa_.W_,
+            "sfa_slowness": self.sfa_.slowness_, "sfa_cutoff": np.array(self.sfa_.cutoff_),
+            "sfa_n_whitened": np.array(self.sfa_.n_whitened_),
+            "ica_mean": self.ica_.mean_, "ica_whitening": self.ica_.whitening_,
+            "ica_rotation": self.ica_.rotation_,
+            "output_std": self.output_std_, "output_peak": self.output_peak_,
+        }
+        if self.params.sfa_expansion == "quadratic":
+            arrays["sfa_pre_mean"] = self.sfa_.pre_mean_
+            arrays["sfa_pre_scale"] = self.sfa_.pre_scale_
+        if self.reservoir_ is not None:
+            arrays.update(W_in=self.reservoir_.W_in, W_res=self.reservoir_.W_res,
+                          leak=self.reservoir_.leak)
+        return save_npz(path, arrays)
+
+    @classmethod
+    def load(cls, path: str | os.PathLike) -> RCSFAICA:
+        """Read a model written by :meth:`save`; a damaged file raises ``CorruptFileError``
+        (a ``ValueError``) naming the problem."""
+        req = ("format", "params", "sfa_mean", "sfa_scale", "sfa_W", "sfa_slowness",
+               "ica_mean", "ica_whitening", "ica_rotation", "output_std", "output_peak")
+        a = load_npz(path, required=req)
+        if str(a["format"]) != FORMAT:
+            raise CorruptFileError(f"{path} is not an RCSFAICA model (format {a['format']!s})")
+        try:
+            raw = json.loads(str(a["params"]))
+            known = {f.name for f in fields(RCSFAICAParams)}
+            if isinstance(raw.get("leak"), list):
+                raw["leak"] = tuple(raw["leak"])
+            params = RCSFAICAParams(**{k: v for k, v in raw.items() if k in known})
+        except (json.JSONDecodeError, TypeError, ValueError) as exc:
+            raise CorruptFileError(f"{path} has unreadable parameters ({exc})") from exc
+        self = cls(params)
+        try:
+            if params.use_reservoir:
+                for k in ("W_in", "W_res", "leak"):
+                    if k not in a:
+                        raise CorruptFileError(f"{path} lacks required array(s): {k}")
+                self.reservoir_ = Reservoir.from_weights(
+                    a["W_in"], a["W_res"], a["leak"], spectral_radius=params.spectral_radius,
+                    dtype=params.dtype, device=params.device)
+            else:
+                self.reservoir_ = None
+            sfa = SFA(params.sfa_params())
+            sfa.mean_, sfa.scale_, sfa.W_ = a["sfa_mean"], a["sfa_scale"], a["sfa_W"]
+            sfa.slowness_ = a["sfa_slowness"]
+            sfa.cutoff_ = float(a.get("sfa_cutoff", np.nan))
+            sfa.n_whitened_ = int(a.get("sfa_n_whitened", -1))
+            if params.sfa_expansion == "quadratic":
+                sfa.pre_mean_, sfa.pre_scale_ = a["sfa_pre_mean"], a["sfa_pre_scale"]
+                sfa.n_features_in_ = sfa.pre_mean_.shape[0]
+            else:
+                sfa.n_features_in_ = sfa.mean_.shape[0]
+            ica = FastICA(params.ica_params())
+            ica.mean_, ica.whitening_, ica.rotation_ = (a["ica_mean"], a["ica_whitening"],
+                                                        a["ica_rotation"])
+            ica.components_ = ica.rotation_ @ ica.whitening_.T
+            ica.n_features_in_ = ica.mean_.shape[0]
+            ica.output_std_ = a["output_std"]
+            n_feat = params.n_inputs + (params.n_reservoir if params.use_reservoir else 0)
+            if (sfa.n_features_in_ != n_feat or sfa.W_.shape[1] != params.n_sfa
+                    or ica.components_.shape != (params.n_ica, params.n_sfa)):
+                raise CorruptFileError(f"{path}: array shapes do not match its parameters")
+        except KeyError as exc:
+            raise CorruptFileError(f"{path} lacks required array {exc}") from exc
+        except ValueError as exc:
+            if isinstance(exc, CorruptFileError):
+                raise
+            raise CorruptFileError(f"{path} holds inconsistent arrays ({exc})") from exc
+        self.sfa_, self.ica_ = sfa, ica
+        self.sfa_slowness_ = sfa.slowness_.copy()
+        self.n_features_in_ = params.n_inputs
+        self.output_std_, self.output_peak_ = a["output_std"], a["output_peak"]
+        self._compile()
+        self.reset_state()
+        return self
+
+    # ------------------------------------------------------------------ misc
+    def _check_fitted(self) -> None:
+        if not hasattr(self, "ica_"):
+            raise RuntimeError("RCSFAICA is not fitted yet; call fit(U) first")
+
+    def __repr__(self) -> str:
+        p = self.params
+        res = (f"reservoir={p.n_reservoir}, leak={p.leak}, rho={p.spectral_radius}"
+               if p.use_reservoir else "no reservoir")
+        return (f"RCSFAICA(n_inputs={p.n_inputs}, {res}, n_sfa={p.n_sfa}, n_ica={p.n_ica}, "
+                f"downsample={p.downsample}, seed={p.seed})")
+
+
+def fit_leak_sweep(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams | None = None,
+                   **overrides: Any) -> list[RCSFAICA]:
+    """Fit one :class:`RCSFAICA` per leak configuration over **one** reservoir (same weights),
+    harvesting all configurations in a single batched run (one matrix-matrix product per tick).
+
+    ``leaks`` is a sequence of leak specs (each a float, k floats, or N floats). Returns fitted
+    models whose ``params.leak`` is the configuration (as given).
+    """
+    base = replace(params or RCSFAICAParams(), **overrides)
+    if not base.use_reservoir:
+        raise ValueError("a leak sweep needs use_reservoir=True")
+    if len(leaks) == 0:
+        raise ValueError("leaks is empty")
+    template = RCSFAICA(base)
+    U = template._check_U(U)
+    res = template._build_reservoir()
+    N = base.n_reservoir
+    A = np.stack([expand_leak(lk, N) for lk in leaks])
+    Ud = template._decimator().offline(U)
+    with torch.inference_mode():
+        states = res.run(Ud, leak=A)                       # (B, T, N)
+    models = []
+    for b, lk in enumerate(leaks):
+        lk_param = float(lk) if np.ndim(lk) == 0 else tuple(float(v) for v in np.ravel(lk))
+        m = RCSFAICA(base, leak=lk_param)
+        m.reservoir_ = Reservoir.from_weights(res.W_in, res.W_res, A[b],
+                                              spectral_radius=base.spectral_radius,
+                                              dtype=base.dtype, device=base.device)
+        m.n_features_in_ = base.n_inputs
+        Xb = states[b].cpu().numpy()
+        m._fit_features(np.concatenate([Ud.astype(Xb.dtype), Xb], axis=1))
+        models.append(m)
+    return models

@@ -1,0 +1,89 @@
+"""Place-cell metrics on hand-made recordings with known answers."""
+
+import numpy as np
+import pytest
+
+from hippo.perception import metrics as M
+
+
+def _track(L=8, reps=30):
+    """A robot shuttling along L locations on a line; unit j fires at location j."""
+    labels = np.tile(np.r_[np.arange(L), np.arange(L - 2, 0, -1)], reps)
+    Y = -0.3 * np.ones((labels.size, L))
+    Y[np.arange(labels.size), labels] = 6.0
+    locations = np.column_stack([np.arange(L) * 10.0, np.zeros(L)])
+    return labels, Y, locations
+
+
+def test_neighbors():
+    _, _, loc = _track()
+    nb = M.location_neighbors(loc)
+    assert nb[0, 1] and nb[3, 2] and not nb[0, 2] and nb[4, 4]
+
+
+def test_localized_units_and_aliasing():
+    labels, Y, loc = _track()
+    nb = M.location_neighbors(loc)
+    res = M.localized_units(Y, labels, nb)
+    assert res.count == 8
+    np.testing.assert_array_equal(res.preferred, np.arange(8))
+    # a unit firing at two distant locations is not localized; a weak unit neither
+    Y2 = Y.copy()
+    Y2[:, 0] = np.where(np.isin(labels, (0, 3, 6)), 6.0, -0.3)
+    Y2[:, 1] = np.where(labels == 1, 3.0, -0.3)
+    res2 = M.localized_units(Y2, labels, nb)
+    assert not res2.localized[0] and not res2.localized[1] and res2.count == 6
+
+
+def test_decoding_accuracy():
+    labels, Y, loc = _track()
+    nb = M.location_neighbors(loc)
+    mapping = M.fit_winner_decoder(Y, labels, 8)
+    np.testing.assert_array_equal(mapping, np.arange(8))
+    assert M.decoding_accuracy(Y, labels, mapping, nb) == (1.0, 1.0)
+    shifted = np.roll(Y, 1, axis=1)  # every unit now fires one location too far
+    exact, near = M.decoding_accuracy(shifted, labels, mapping, nb)
+    assert exact < 0.2 and near > 0.8
+
+
+def test_place_fields():
+    labels, Y, loc = _track()
+    F = M.place_fields_locations(labels, Y, 9)
+    assert np.isnan(F[8]).all() and F[3, 3] == 6.0
+    xy = loc[labels]
+    fields, occ, _, _ = M.place_fields_grid(xy, Y, bins=(8, 1))
+    assert fields.shape == (8, 1, 8) and occ.sum() == labels.size
+    order = M.spatial_order(Y[:, ::-1], labels, 8)
+    np.testing.assert_array_equal(order, np.arange(8)[::-1])
+
+
+def test_binary_cell_and_balanced_accuracy():
+    rng = np.random.default_rng(0)
+    truth = np.repeat([False, True, False, True], 250)
+    Y = rng.standard_normal((1000, 3))
+    Y[:, 2] = np.where(truth, -1.0, 1.0) + 0.1 * rng.standard_normal(1000)
+    cell = M.fit_binary_cell(Y, truth)
+    assert cell.unit == 2 and cell.polarity == -1 and cell.train_balanced_accuracy == 1.0
+    assert M.balanced_accuracy(cell.predict(Y), truth) == 1.0
+    assert M.balanced_accuracy(np.ones(4, bool), np.array([1, 1, 0, 0], bool)) == 0.5
+    with pytest.raises(ValueError, match="both classes"):
+        M.fit_binary_cell(Y, np.zeros(1000, bool))
+
+
+def test_recovery_times():
+    correct = np.ones(100, bool)
+    correct[10:22] = False
+    correct[50:53] = False
+    correct[55] = False
+    np.testing.assert_array_equal(M.recovery_times(correct, [10, 50], hold=5), [12, 6])
+    never = np.zeros(30, bool)
+    assert np.isnan(M.recovery_times(never, [5])[0])
+
+
+def test_bad_input():
+    with pytest.raises(ValueError, match="labels"):
+        M.place_fields_locations(np.array([0.5, 1.0]), np.zeros((2, 1)), 3)
+    with pytest.raises(ValueError, match="rows"):
+        M.place_fields_locations(np.array([0, 1]), np.zeros((3, 1)), 3)
+    with pytest.raises(ValueError, match="non-finite"):
+        M.localized_units(np.array([[np.nan]]), np.array([0]), np.ones((1, 1), bool))

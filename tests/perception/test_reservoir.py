@@ -1,0 +1,135 @@
+"""Reservoir: SMC09 eq. 1 with the leak inside the tanh, batched runs, the online step."""
+
+import numpy as np
+import pytest
+import torch
+
+from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
+
+
+def _inputs(T=300, n=8, seed=0):
+    rng = np.random.default_rng(seed)
+    return rng.random((T, n))
+
+
+def small(**kw):
+    base = dict(n_inputs=8, n_neurons=60, seed=3)
+    base.update(kw)
+    return ReservoirParams(**base)
+
+
+def test_spectral_radius_as_set():
+    for rho in (0.5, 0.9, 0.99):
+        r = Reservoir(small(spectral_radius=rho))
+        assert abs(r.spectral_radius - rho) < 1e-9
+
+
+def test_input_weights_are_ternary_with_paper_probabilities():
+    r = Reservoir(ReservoirParams(n_inputs=200, n_neurons=100, seed=1))
+    vals, counts = np.unique(r.W_in, return_counts=True)
+    assert set(vals.tolist()) == {-2.0, 0.0, 2.0}
+    frac = counts / counts.sum()
+    assert abs(frac[0] - 0.075) < 0.01 and abs(frac[2] - 0.075) < 0.01
+    r2 = Reservoir(ReservoirParams.icann09(n_inputs=200, n_neurons=100))
+    assert set(np.unique(r2.W_in).tolist()) == {-0.2, 0.0, 0.2}
+    assert abs(np.mean(r2.W_in != 0) - 0.30) < 0.02
+
+
+def test_seeded_and_independent_streams():
+    a, b = Reservoir(small()), Reservoir(small())
+    assert np.array_equal(a.W_res, b.W_res) and np.array_equal(a.W_in, b.W_in)
+    c = Reservoir(small(seed=4))
+    assert not np.array_equal(a.W_res, c.W_res)
+    # W_res does not depend on the number of inputs (its own random stream)
+    d = Reservoir(small(n_inputs=3))
+    assert np.array_equal(a.W_res, d.W_res)
+
+
+def test_leak_one_is_standard_esn():
+    r = Reservoir(small(leak=1.0), dtype="float64")
+    U = _inputs()
+    X = r.run(U).numpy()
+    x = np.zeros(r.n_neurons)
+    for t, u in enumerate(U):
+        x = np.tanh(r.W_in @ u + r.W_res @ x)
+        np.testing.assert_allclose(X[t], x, atol=1e-10)
+
+
+def test_leak_inside_tanh():
+    r = Reservoir(small(leak=(0.05, 0.15)), dtype="float64")
+    U = _inputs(50)
+    X = r.run(U).numpy()
+    a = r.leak
+    x = np.zeros(r.n_neurons)
+    for t, u in enumerate(U):
+        x = np.tanh((1 - a) * x + a * (r.W_in @ u + r.W_res @ x))
+        np.testing.assert_allclose(X[t], x, atol=1e-12)
+    assert np.all(a[:30] == 0.05) and np.all(a[30:] == 0.15)
+
+
+def test_echo_state_property():
+    r = Reservoir(small(leak=0.3, spectral_radius=0.9), dtype="float64")
+    U = _inputs(1500)
+    x0 = np.random.default_rng(9).uniform(-1, 1, r.n_neurons)
+    Xa = r.run(U).numpy()
+    Xb = r.run(U, x0=x0).numpy()
+    assert np.abs(Xa[0] - Xb[0]).max() > 0.1
+    assert np.abs(Xa[-1] - Xb[-1]).max() < 1e-6
+
+
+@pytest.mark.parametrize("dtype,tol", [("float32", 1e-4), ("float64", 1e-10)])
+def test_run_equals_repeated_step(dtype, tol):
+    r = Reservoir(small(n_neurons=200), dtype=dtype)
+    U = _inputs(400)
+    X = r.run(U).numpy()
+    r.reset()
+    S = np.array([r.step(u).copy() for u in U])
+    np.testing.assert_allclose(S, X, atol=tol)
+
+
+def test_batched_equals_unbatched():
+    r = Reservoir(small(), dtype="float64")
+    U = np.stack([_inputs(200, seed=s) for s in range(3)])
+    Xb = r.run(U).numpy()
+    assert Xb.shape == (3, 200, 60)
+    for b in range(3):
+        np.testing.assert_allclose(Xb[b], r.run(U[b]).numpy(), atol=1e-12)
+    # leak sweep: one stream, B leak configurations over the same W_res
+    leaks = np.array([[0.05, 0.15], [0.11, 0.14], [1.0, 1.0]])
+    Xs = r.run(U[0], leak=leaks).numpy()
+    assert Xs.shape == (3, 200, 60)
+    for b, lk in enumerate(leaks):
+        np.testing.assert_allclose(Xs[b], r.run(U[0], leak=tuple(lk)).numpy(), atol=1e-12)
+
+
+def test_expand_leak():
+    np.testing.assert_array_equal(expand_leak(0.3, 4), [0.3] * 4)
+    np.testing.assert_array_equal(expand_leak((0.1, 0.2), 5), [0.1, 0.1, 0.1, 0.2, 0.2])
+    with pytest.raises(ValueError, match="leak"):
+        expand_leak(0.0, 4)
+    with pytest.raises(ValueError, match="leak"):
+        expand_leak((0.1,) * 5, 4)
+
+
+def test_bad_parameters_and_inputs():
+    with pytest.raises(ValueError, match="spectral_radius"):
+        ReservoirParams(spectral_radius=0.0)
+    with pytest.raises(ValueError, match="spectral_radius"):
+        ReservoirParams(spectral_radius=-1.0)
+    with pytest.raises(ValueError, match="input_prob"):
+        ReservoirParams(input_prob=0.7)
+    r = Reservoir(small())
+    with pytest.raises(ValueError, match="shape"):
+        r.run(np.zeros((10, 3)))
+    with pytest.raises(ValueError, match="NaN"):
+        r.run(np.full((10, 8), np.nan))
+    with pytest.raises(ValueError, match="shape"):
+        r.step(np.zeros(7))
+    with pytest.raises(ValueError, match="NaN"):
+        r.step(np.array([np.nan] + [0.0] * 7))
+
+
+def test_torch_input_and_dtype():
+    r = Reservoir(small())
+    X = r.run(torch.rand(20, 8))
+    assert X.dtype == torch.float32 and X.shape == (20, 60)

@@ -1,0 +1,91 @@
+"""SFA: recovers a hidden slow signal, whitened outputs ordered by slowness, rank deficiency."""
+
+import numpy as np
+import pytest
+
+from hippo.perception.sfa import SFA, SFAParams, quadratic_expansion
+
+
+def _mixture(T=4000, seed=0, extra_cols=0):
+    rng = np.random.default_rng(seed)
+    t = np.arange(T)
+    slow = np.sin(2 * np.pi * t / 1000)
+    fast = [np.sin(2 * np.pi * t / p + rng.uniform(0, 6)) for p in (7.3, 11.1, 17.9)]
+    noise = rng.standard_normal((T, 2))
+    S = np.column_stack([slow, *fast, *noise.T])
+    A = rng.standard_normal((S.shape[1], S.shape[1] + extra_cols))
+    return S @ A, slow
+
+
+def test_recovers_slow_sine():
+    X, slow = _mixture()
+    y = SFA(n_components=1).fit_transform(X)[:, 0]
+    assert abs(np.corrcoef(y, slow)[0, 1]) > 0.99
+
+
+def test_outputs_white_and_ordered():
+    X, _ = _mixture()
+    sfa = SFA(n_components=4).fit(X)
+    Y = sfa.transform(X)
+    np.testing.assert_allclose(Y.mean(axis=0), 0, atol=1e-8)
+    np.testing.assert_allclose(np.cov(Y.T, bias=True), np.eye(4), atol=1e-6)
+    delta = np.mean(np.diff(Y, axis=0) ** 2, axis=0)
+    np.testing.assert_allclose(delta, sfa.slowness_, rtol=1e-6)
+    assert np.all(np.diff(sfa.slowness_) >= 0)
+
+
+def test_survives_duplicated_and_constant_columns():
+    X, slow = _mixture()
+    X = np.column_stack([X, X[:, 0], np.full(len(X), 3.0)])
+    sfa = SFA(n_components=2).fit(X)
+    assert sfa.n_whitened_ == X.shape[1] - 2
+    assert abs(np.corrcoef(sfa.transform(X)[:, 0], slow)[0, 1]) > 0.99
+
+
+def test_auto_cutoff_picks_a_candidate():
+    X, slow = _mixture()
+    sfa = SFA(n_components=1, cutoff="auto").fit(X)
+    assert 0 < sfa.cutoff_ < 1 and sfa.cutoff_scores_
+    assert abs(np.corrcoef(sfa.transform(X)[:, 0], slow)[0, 1]) > 0.99
+
+
+def test_quadratic_expansion_finds_slow_square():
+    rng = np.random.default_rng(1)
+    T = 5000
+    t = np.arange(T)
+    slow = np.sin(2 * np.pi * t / 1500)
+    fast = rng.choice([-1.0, 1.0], size=T)
+    X = np.column_stack([slow * fast, rng.standard_normal(T)])  # slow only in the square
+    lin = SFA(n_components=1).fit_transform(X)[:, 0]
+    quad = SFA(n_components=1, expansion="quadratic").fit_transform(X)[:, 0]
+    assert abs(np.corrcoef(quad, slow ** 2)[0, 1]) > 0.99
+    assert abs(np.corrcoef(lin, slow ** 2)[0, 1]) < 0.2
+    assert quadratic_expansion(np.ones((3, 4))).shape == (3, 4 + 10)
+
+
+def test_affine_matches_transform():
+    X, _ = _mixture(T=800)
+    sfa = SFA(n_components=3).fit(X)
+    M, b = sfa.affine()
+    np.testing.assert_allclose(X @ M + b, sfa.transform(X), atol=1e-9)
+
+
+def test_bad_input():
+    X, _ = _mixture(T=500)
+    with pytest.raises(ValueError, match="n_sfa=20 exceeds"):
+        SFA(n_components=20).fit(X)
+    with pytest.raises(ValueError, match="2-D"):
+        SFA().fit(X[:, 0])
+    bad = X.copy()
+    bad[3, 1] = np.nan
+    with pytest.raises(ValueError, match="non-finite"):
+        SFA().fit(bad)
+    with pytest.raises(ValueError, match="cutoff"):
+        SFAParams(cutoff=0.0)
+    with pytest.raises(ValueError, match="expansion"):
+        SFAParams(expansion="cubic")
+    with pytest.raises(RuntimeError, match="not fitted"):
+        SFA().transform(X)
+    sfa = SFA(n_components=2).fit(X)
+    with pytest.raises(ValueError, match="features"):
+        sfa.transform(X[:, :3])
