@@ -1,0 +1,408 @@
+"""Multimodal winner-take-all state layer: which sensory state is current (HIREL sec. II, Fig. 1).
+
+Public API
+----------
+- :class:`StateLayerParams` — margin and hold time of the hysteresis, place-cell scaling,
+  recruitment threshold, which event states are conjunctive or transient.
+- :class:`StateLayer` — ``step(place, *, colour, sound, moving, dt) -> StateEvent``;
+  ``reset(keep_states=False)``; ``recruit(kind, index, context) -> id``;
+  ``find(kind, index, context) -> id``; ``key(id) -> StateKey``; ``describe(id) -> str``;
+  ``states`` (all keys, index = state id); ``winner``; ``t``; ``place_activity``.
+- :class:`StateEvent` — one tick's outcome: ``winner`` (int state id), ``changed`` (a sensory
+  event: the winner changed at this tick), ``previous``, ``t``, ``since``, ``novel``.
+- :class:`StateKey` — ``(kind, index, context)``: ``("place", 3, None)``, ``("colour", 2,
+  None)``, ``("sound", None, None)``, ``("still", None, 5)`` = "still at state 5".
+
+State ids are integers given in order of first appearance; they never change until
+``reset()``. Use them as the nodes of transitions ``(a, b)``.
+
+Competition
+-----------
+Every state has an activity on a common scale [0, 1]:
+
+* **place** ``i``: ``tanh(max(z_i, 0) / place_scale)``, low-pass filtered with time constant
+  ``smoothing`` (a leaky state neuron), where ``z_i`` is the unit's activity standardised by
+  the running mean and variance of the whole place population (``normalize="pooled"``, time
+  constant ``norm_tau``; prior mean 0, variance 1, so whitened inputs such as ICA units work
+  from the first tick). Pooling is a divisive gain control shared by all units: a dead unit
+  stays silent and a long stay at one place does not adapt its cell away, which per-unit
+  statistics (``"unit"``) would do; ``"fixed"`` uses the raw activity. Any source of place
+  activity works (learned ICA units, template cells, ...); the vector may grow between ticks
+  (new place cells are recruited).
+* **event states** — ``sound``, floor ``colour`` (0 = plain floor, no state) and proprioception
+  ``still`` / ``moving``: 1 while their input is on. They are *salient*: the onset of their
+  input (sound starts, a colour appears, the robot stops or starts) makes them win at once.
+  ``still`` and ``moving`` are conjunctive by default: they are bound to the context (the last
+  place or colour state that won), so "still at the goal" and "still at checkpoint 2" are
+  different states with different timed transitions. ``moving`` is transient: its activity
+  falls to 0 ``transient_time`` after its onset so that place cells take over while driving.
+
+Place states compete by level with hysteresis: a place beats the winner only when its activity
+exceeds the winner's by ``margin`` for ``hold_time`` seconds in a row, so noisy place cells do
+not flicker, and a clear change of input changes the winner within a few ticks
+(``ceil(hold_time / dt)`` plus the filter's rise, 4 ticks by default). Event states win
+only at onsets; a place replaces one once its input is off (its activity is then 0)::
+
+    layer = StateLayer()
+    ev = layer.step(place_acts, colour=obs.floor, sound=obs.sound, moving=obs.moving, dt=0.2)
+    if ev.changed:
+        print(f"t={ev.t:.1f}s: {layer.describe(ev.previous)} -> {layer.describe(ev.winner)}")
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from hippo._checks import check_finite, check_positive, check_range
+
+__all__ = ["EVENT_KINDS", "StateEvent", "StateKey", "StateLayer", "StateLayerParams"]
+
+#: kinds of event (salient) states, in order of priority when several start at one tick
+EVENT_KINDS = ("sound", "colour", "still", "moving")
+_KINDS = ("place", *EVENT_KINDS)
+_CONTEXT_KINDS = ("place", "colour")
+
+
+class StateKey(NamedTuple):
+    """Identity of a state: its kind, unit index or colour id, and context state id."""
+
+    kind: str
+    index: int | None = None
+    context: int | None = None
+
+
+@dataclass(frozen=True)
+class StateLayerParams:
+    """Parameters of the state layer.
+
+    margin: how much (common scale, 0-1) a place must exceed the winner by (default 0.15).
+    hold_time: for how long, seconds (default 0.6 s = 3 ticks at dt = 0.2 s).
+    normalize: ``"pooled"`` (default) standardises place activities by the running mean and
+        variance of the whole population; ``"unit"`` by each unit's own; ``"fixed"``: raw.
+    place_scale: the standardised (or raw) activity mapped to tanh(1) = 0.76 (default 2.0).
+    norm_tau: time constant of the running statistics, seconds (default 300 s).
+    smoothing: time constant of the place neurons' low-pass filter, seconds (default 0.4 s:
+        halves the noise for one extra tick of latency; 0 disables it).
+    recruit_threshold: ``StateEvent.novel`` is True when no place activity reaches this
+        (default 0.3): the place cell learner may recruit a new cell (HIREL learns place cells
+        online above a minimum activity threshold).
+    conjunctive: event kinds bound to the current context (default ``("still", "moving")``).
+    transient: event kinds whose activity falls to 0 ``transient_time`` after onset
+        (default ``("moving",)``, ``transient_time`` 1.0 s).
+    """
+
+    margin: float = 0.15
+    hold_time: float = 0.6
+    normalize: str = "pooled"
+    place_scale: float = 2.0
+    norm_tau: float = 300.0
+    smoothing: float = 0.4
+    recruit_threshold: float = 0.3
+    conjunctive: tuple[str, ...] = ("still", "moving")
+    transient: tuple[str, ...] = ("moving",)
+    transient_time: float = 1.0
+
+    def __post_init__(self) -> None:
+        check_range("margin", self.margin, 0.0, 1.0)
+        check_positive("hold_time", self.hold_time, allow_zero=True)
+        if self.normalize not in ("pooled", "unit", "fixed"):
+            raise ValueError(f"normalize must be 'pooled', 'unit' or 'fixed', "
+                             f"got {self.normalize!r}")
+        check_positive("place_scale", self.place_scale)
+        check_positive("norm_tau", self.norm_tau)
+        check_positive("smoothing", self.smoothing, allow_zero=True)
+        check_range("recruit_threshold", self.recruit_threshold, 0.0, 1.0)
+        for name in ("conjunctive", "transient"):
+            bad = [k for k in getattr(self, name) if k not in EVENT_KINDS]
+            if bad:
+                raise ValueError(f"{name} lists unknown event kind(s) {bad}; "
+                                 f"choose from {EVENT_KINDS}")
+        check_positive("transient_time", self.transient_time)
+
+
+@dataclass(frozen=True)
+class StateEvent:
+    """Outcome of one tick of the state layer.
+
+    t: time of this tick (sum of the dt so far, s). winner: the winning state id.
+    changed: the winner changed at this tick — a sensory event (also True at the first tick).
+    previous: the state that lost at this event (None otherwise). since: when the winner won.
+    novel: no place cell reaches ``recruit_threshold``.
+    """
+
+    t: float
+    winner: int
+    changed: bool
+    previous: int | None
+    since: float
+    novel: bool
+
+
+def _flag(name: str, value: object) -> bool | None:
+    if value is None:
+        return None
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    v = float(check_finite(name, value))
+    if v not in (0.0, 1.0):
+        raise ValueError(f"{name} must be a boolean (or 0/1), got {value!r}")
+    return v == 1.0
+
+
+def _colour(value: object) -> int | None:
+    if value is None:
+        return None
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"colour must be an integer colour id, got {value!r}")
+    v = float(check_finite("colour", value))
+    if v != int(v) or v < 0:
+        raise ValueError(f"colour must be an integer colour id >= 0, got {value!r}")
+    return None if v == 0 else int(v)
+
+
+class StateLayer:
+    """Winner-take-all over place, colour, sound and proprioceptive states (HIREL Fig. 1).
+
+    The competition (see the module docstring) implements HIREL's "a winner-take-all (WTA)
+    competition takes place between the state neurons. Any change in the winning state
+    triggers the spectral timing memory": every change of winner is a sensory event reported
+    with its time. Place states need hysteresis (winner activity + ``margin`` during
+    ``hold_time``); event states (sound, floor colour, still, moving) win at their onset.
+    """
+
+    def __init__(self, params: StateLayerParams | None = None, n_place: int = 0) -> None:
+        self.params = params or StateLayerParams()
+        if int(n_place) != n_place or n_place < 0:
+            raise ValueError(f"n_place must be an integer >= 0, got {n_place!r}")
+        self._n_place0 = int(n_place)
+        self.reset()
+
+    # ---------------------------------------------------------------- registry
+    def reset(self, *, keep_states: bool = False) -> None:
+        """Restart the competition (and, unless ``keep_states``, forget every state id)."""
+        if not keep_states or not hasattr(self, "_keys"):
+            self._keys: list[StateKey] = []
+            self._ids: dict[StateKey, int] = {}
+            self._place_ids = np.zeros(0, dtype=int)
+            self._mean = np.zeros(0)
+            self._var = np.ones(0)
+            self._evidence = np.zeros(0)
+            self._add_places(self._n_place0)
+        else:
+            self._mean[:] = 0.0
+            self._var[:] = 1.0
+            self._evidence[:] = 0.0
+        self.t = 0.0
+        self.winner: int | None = None
+        self.since = 0.0
+        self._context: int | None = None
+        self._prev_sound = False
+        self._prev_colour: int | None = None
+        self._prev_moving: bool | None = None
+        self._onset_t: dict[int, float] = {}
+        self._pool = (0.0, 1.0)
+        self.place_activity = np.zeros(self._place_ids.size)
+        self.activity: dict[int, float] = {}
+
+    def recruit(self, kind: str, index: int | None = None, context: int | None = None) -> int:
+        """Id of the state ``(kind, index, context)``, registering it if new."""
+        key = self._make_key(kind, index, context)
+        if key.kind == "place" and key.index >= self._place_ids.size:  # type: ignore[operator]
+            self._add_places(key.index + 1 - self._place_ids.size)  # type: ignore[operator]
+            return self._ids[key]
+        return self._register(key)
+
+    def find(self, kind: str, index: int | None = None, context: int | None = None) -> int:
+        """Id of an existing state; ``ValueError`` if it was never seen."""
+        key = self._make_key(kind, index, context)
+        if key not in self._ids:
+            raise ValueError(f"unknown state {key}: never seen by this state layer")
+        return self._ids[key]
+
+    def key(self, state: int) -> StateKey:
+        """The :class:`StateKey` of a state id; ``ValueError`` for an unknown id."""
+        if isinstance(state, bool) or not isinstance(state, (int, np.integer)):
+            raise ValueError(f"state id must be an integer, got {state!r}")
+        if not 0 <= state < len(self._keys):
+            raise ValueError(f"unknown state id {state} (this layer has {len(self._keys)} states)")
+        return self._keys[int(state)]
+
+    def describe(self, state: int) -> str:
+        """Human-readable name: ``place 3``, ``colour 2``, ``sound``, ``still@place 3``."""
+        k = self.key(state)
+        name = k.kind if k.index is None else f"{k.kind} {k.index}"
+        if k.context is not None:
+            name += "@" + self.describe(k.context)
+        return name
+
+    @property
+    def states(self) -> list[StateKey]:
+        """Every state's key; the position is its id."""
+        return list(self._keys)
+
+    @property
+    def n_states(self) -> int:
+        """Number of states registered so far."""
+        return len(self._keys)
+
+    def _make_key(self, kind: str, index: int | None, context: int | None) -> StateKey:
+        if kind not in _KINDS:
+            raise ValueError(f"unknown state kind {kind!r}; choose from {_KINDS}")
+        if kind in ("place", "colour"):
+            if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or index < 0:
+                raise ValueError(f"a {kind} state needs an integer index >= 0, got {index!r}")
+            index = int(index)
+        elif index is not None:
+            raise ValueError(f"a {kind} state takes no index, got {index!r}")
+        if context is not None:
+            if kind not in self.params.conjunctive:
+                raise ValueError(f"{kind} states are not conjunctive (params.conjunctive)")
+            self.key(context)
+            context = int(context)
+        return StateKey(kind, index, context)
+
+    def _register(self, key: StateKey) -> int:
+        sid = self._ids.get(key)
+        if sid is None:
+            sid = self._ids[key] = len(self._keys)
+            self._keys.append(key)
+        return sid
+
+    def _add_places(self, n: int) -> None:
+        start = self._place_ids.size
+        ids = [self._register(StateKey("place", start + i, None)) for i in range(n)]
+        self._place_ids = np.concatenate([self._place_ids, np.array(ids, dtype=int)])
+        self._mean = np.concatenate([self._mean, np.zeros(n)])
+        self._var = np.concatenate([self._var, np.ones(n)])
+        self._evidence = np.concatenate([self._evidence, np.zeros(n)])
+        if hasattr(self, "place_activity"):
+            self.place_activity = np.concatenate([self.place_activity, np.zeros(n)])
+
+    # ---------------------------------------------------------------- competition
+    def _places(self, place: object, dt: float) -> np.ndarray:
+        if place is None:
+            a = np.zeros(0)
+        else:
+            a = check_finite("place activities", place)
+            if a.ndim != 1:
+                raise ValueError(f"place activities must be a 1-D vector, got shape {a.shape}")
+        if a.size < self._place_ids.size:
+            raise ValueError(f"place activity vector shrank from {self._place_ids.size} to "
+                             f"{a.size} units; place states are never removed")
+        if a.size > self._place_ids.size:
+            self._add_places(a.size - self._place_ids.size)
+        p = self.params
+        rate = min(dt / p.norm_tau, 1.0)
+        if p.normalize == "unit":
+            z = (a - self._mean) / np.sqrt(self._var)
+            d = a - self._mean
+            self._mean = self._mean + rate * d
+            self._var = np.maximum((1.0 - rate) * (self._var + rate * d * d), 1e-12)
+        elif p.normalize == "pooled" and a.size:
+            z = (a - self._pool[0]) / math.sqrt(self._pool[1])
+            d = a - self._pool[0]
+            m = self._pool[0] + rate * float(d.mean())
+            v = max((1.0 - rate) * (self._pool[1] + rate * float((d * d).mean())), 1e-12)
+            self._pool = (m, v)
+        else:
+            z = a
+        target = np.tanh(np.maximum(z, 0.0) / p.place_scale)
+        if p.smoothing > 0 and self.winner is not None:
+            k = math.exp(-dt / p.smoothing)
+            target = k * self.place_activity + (1.0 - k) * target
+        return target
+
+    def _event_level(self, sid: int, sound: bool, colour: int | None,
+                     moving: bool | None) -> float:
+        k = self._keys[sid]
+        if k.kind == "sound":
+            on = sound
+        elif k.kind == "colour":
+            on = colour == k.index
+        elif k.kind == "still":
+            on = moving is False
+        else:
+            on = moving is True
+        if on and k.kind in self.params.transient:
+            on = self.t - self._onset_t.get(sid, -math.inf) < self.params.transient_time - 1e-9
+        return 1.0 if on else 0.0
+
+    def _event_state(self, kind: str) -> int:
+        ctx = self._context if kind in self.params.conjunctive else None
+        return self._register(StateKey(kind, None, ctx))
+
+    def step(self, place: object = None, *, colour: object = None, sound: object = False,
+             moving: object = None, dt: float) -> StateEvent:
+        """One tick of the competition.
+
+        place: place-cell activities (1-D, may grow between ticks; None = no place cells).
+        colour: floor colour id (0 or None = plain floor). sound: the reward sound is heard.
+        moving: proprioception (True moving, False still, None = not sensed). dt: seconds
+        since the previous tick (> 0).
+        """
+        dt = check_positive("dt", dt)
+        snd = bool(_flag("sound", sound))
+        mov = _flag("moving", moving)
+        col = _colour(colour)
+        pa = self._places(place, dt)
+        self.t = self.t + dt if self.winner is not None else 0.0
+        self.place_activity = pa
+        p = self.params
+
+        onsets: list[str] = []
+        if snd and not self._prev_sound:
+            onsets.append("sound")
+        if col is not None and col != self._prev_colour:
+            onsets.append("colour")
+        if self._prev_moving is not None and mov is not None and mov != self._prev_moving:
+            onsets.append("moving" if mov else "still")
+        self._prev_sound, self._prev_colour, self._prev_moving = snd, col, mov
+
+        new: int | None = None
+        if self.winner is None:  # first tick: the strongest input wins outright
+            if snd:
+                new = self._event_state("sound")
+            elif col is not None:
+                new = self._register(StateKey("colour", col, None))
+            elif pa.size:
+                new = int(self._place_ids[int(np.argmax(pa))])
+            elif mov is not None:
+                new = self._event_state("moving" if mov else "still")
+            else:
+                raise ValueError("nothing to compete: give place activities, a floor colour, "
+                                 "the sound flag or the moving flag")
+        elif onsets:
+            kind = min(onsets, key=EVENT_KINDS.index)
+            new = (self._register(StateKey("colour", col, None)) if kind == "colour"
+                   else self._event_state(kind))
+            if new == self.winner:
+                new = None
+        if new is None and self.winner is not None and pa.size:
+            wk = self._keys[self.winner]
+            w_act = (float(pa[wk.index]) if wk.kind == "place"
+                     else self._event_level(self.winner, snd, col, mov))
+            beating = pa > w_act + p.margin
+            if wk.kind == "place":
+                beating[wk.index] = False
+            self._evidence = np.where(beating, self._evidence + dt, 0.0)
+            ready = self._evidence >= p.hold_time - 1e-9
+            if np.any(ready):
+                new = int(self._place_ids[int(np.argmax(np.where(ready, pa, -np.inf)))])
+
+        previous = None
+        changed = new is not None and new != self.winner
+        if changed:
+            previous, self.winner, self.since = self.winner, new, self.t
+            self._evidence[:] = 0.0
+            self._onset_t[new] = self.t
+            if self._keys[new].kind in _CONTEXT_KINDS:
+                self._context = new
+        self.activity = {int(s): float(v) for s, v in zip(self._place_ids, pa)}
+        if self._keys[self.winner].kind != "place":
+            self.activity[self.winner] = self._event_level(self.winner, snd, col, mov)
+        novel = not (pa.size and float(pa.max()) >= p.recruit_threshold)
+        return StateEvent(self.t, int(self.winner), bool(changed), previous, self.since, novel)

@@ -1,0 +1,223 @@
+"""Spectral timing: one battery of time cells per state (HIREL, after Grossberg & Schmajuk).
+
+Public API
+----------
+- :class:`SpectralParams` — battery size, range of centres, Weber fraction, readout threshold.
+- :class:`SpectralTiming` — ``step(winner, dt) -> BatteryState``; ``reset()``;
+  ``tuning(tau)`` (the battery at elapsed time ``tau``); ``battery(state)`` (zeros unless
+  ``state`` is the current winner); ``readout(v)`` (population readout of a time, in seconds,
+  from battery activity *or* from learned synaptic weights over the battery).
+- :class:`BatteryState` — what one tick produced: current winner, its elapsed time and battery,
+  and, at a sensory event, the previous state with its battery at the moment of the event
+  (that battery is the conditioned stimulus the transition cells learn from).
+
+Example::
+
+    timing = SpectralTiming()
+    bs = timing.step(winner=3, dt=0.2)      # bs.changed is True at a change of winner
+    bs.activity                              # the winner's battery, shape (n_cells,)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from hippo._checks import check_finite, check_positive, check_range
+
+__all__ = ["BatteryState", "SpectralParams", "SpectralTiming", "check_state_id"]
+
+
+def check_state_id(name: str, state: object) -> int:
+    """Return ``state`` as an int state id, or raise ``ValueError`` (ids are integers >= 0)."""
+    if isinstance(state, bool) or not isinstance(state, (int, np.integer)):
+        raise ValueError(f"{name} must be an integer state id, got {state!r}")
+    if state < 0:
+        raise ValueError(f"{name} must be a state id >= 0, got {state!r}")
+    return int(state)
+
+
+@dataclass(frozen=True)
+class SpectralParams:
+    """Parameters of the time-cell batteries.
+
+    n_cells: cells per battery (default 128: log spacing of 0.05, half the Weber fraction,
+        so neighbouring bumps overlap and the population readout is smooth).
+    mu_min, mu_max: smallest and largest centre, seconds (default 0.2 s = one control tick, and
+        120 s, twice the longest delay the tasks need so that 60 s sits inside the battery).
+    weber: Weber fraction ``k``; cell ``j`` has width ``sigma_j = k * mu_j`` (default 0.1: the
+        learned prediction's full width at half maximum is ~0.32 of its delay).
+    min_width: floor on ``sigma_j``, seconds (default 0.1 s, half a tick, so that the short
+        cells are still sampled by a 0.2 s control loop; Weber's law holds above 1 s).
+    readout_fraction: a population readout uses the cells within the contiguous peak of the
+        pattern that exceed this fraction of its maximum (default 0.5).
+    """
+
+    n_cells: int = 128
+    mu_min: float = 0.2
+    mu_max: float = 120.0
+    weber: float = 0.1
+    min_width: float = 0.1
+    readout_fraction: float = 0.5
+
+    def __post_init__(self) -> None:
+        if int(self.n_cells) != self.n_cells or self.n_cells < 4:
+            raise ValueError(f"n_cells must be an integer >= 4, got {self.n_cells!r}")
+        check_positive("mu_min", self.mu_min)
+        check_positive("mu_max", self.mu_max)
+        if not self.mu_max > self.mu_min:
+            raise ValueError(f"mu_max ({self.mu_max}) must exceed mu_min ({self.mu_min})")
+        check_positive("weber", self.weber)
+        check_positive("min_width", self.min_width, allow_zero=True)
+        check_range("readout_fraction", self.readout_fraction, 0.0, 1.0, closed="left")
+
+
+@dataclass(frozen=True, eq=False)
+class BatteryState:
+    """The battery after one tick.
+
+    state: the current winner; tau: seconds since it became the winner; activity: its battery.
+    changed: a sensory event happened at this tick (the winner changed, or the first tick).
+    previous, previous_tau, previous_activity: at an event, the state that lost, how long it had
+    been the winner (the delay of the transition) and its battery at that moment; ``None`` / nan
+    when there was no event or no previous state.
+    """
+
+    state: int
+    tau: float
+    activity: np.ndarray
+    changed: bool
+    previous: int | None = None
+    previous_tau: float = math.nan
+    previous_activity: np.ndarray | None = field(default=None, repr=False)
+
+
+_CALIBRATIONS: dict[SpectralParams, tuple[np.ndarray, np.ndarray]] = {}
+
+
+def _calibration(timing: SpectralTiming) -> tuple[np.ndarray, np.ndarray]:
+    """Readout code of the battery at 4096 log-spaced times (cached per parameter set)."""
+    p = timing.params
+    if p not in _CALIBRATIONS:
+        grid = np.geomspace(p.mu_min, p.mu_max, 4096)
+        codes = np.array([timing._code(x) for x in timing.tuning(grid)])
+        codes = np.maximum.accumulate(codes)
+        keep = np.concatenate(([True], np.diff(codes) > 1e-12))
+        _CALIBRATIONS[p] = (codes[keep], grid[keep])
+    return _CALIBRATIONS[p]
+
+
+class SpectralTiming:
+    r"""A battery of ``m`` time cells per state; only the current winner's battery is active.
+
+    Cell ``j`` of the winner's battery responds to the time :math:`\tau` since that state won:
+
+    .. math:: X_j(\tau) = \exp\!\left(-\frac{(\tau-\mu_j)^2}{2\sigma_j^2}\right),\qquad
+              \sigma_j = \max(k\,\mu_j,\ \sigma_{min}),
+
+    centres :math:`\mu_j` log-spaced over ``[mu_min, mu_max]`` (HIREL sec. II, "spectral
+    decomposition of time" [Grossberg & Schmajuk 1989]; the form is DESIGN.md's). Each change of
+    winner restarts the battery at :math:`\tau = 0`.
+
+    Why Gaussian bumps over :math:`\tau` rather than tuning to a decaying trace: with log-spaced
+    centres and widths proportional to the centre, the pattern is scale invariant (the battery
+    at :math:`c\tau` is the battery at :math:`\tau` shifted along the cell axis), its norm
+    :math:`\sum_j X_j^2` is the same at every delay, and a one-shot NLMS association therefore
+    peaks at the learned delay with a width proportional to it (Weber's law) — the properties
+    recorded hippocampal time cells show (centres even on a log axis, widths growing linearly).
+
+    Population readout (hippo's addition for precise timing): :meth:`readout` maps a pattern
+    ``v`` over the cells to a time in seconds: the activity-weighted mean of :math:`\log\mu_j`
+    over the contiguous peak of ``v`` above ``readout_fraction * max(v)``, calibrated once so
+    that ``readout(tuning(tau)) == tau``. Applied to learned weights ``W ∝ X(T)`` it returns
+    ``T`` exactly, whatever the bias of the raw mean, because both go through the same map.
+    """
+
+    def __init__(self, params: SpectralParams | None = None) -> None:
+        self.params = params or SpectralParams()
+        p = self.params
+        self.mu = np.geomspace(p.mu_min, p.mu_max, int(p.n_cells))
+        self.sigma = np.maximum(p.weber * self.mu, p.min_width)
+        self._log_mu = np.log(self.mu)
+        self._cal_code, self._cal_tau = _calibration(self)
+        self.reset()
+
+    @property
+    def n_cells(self) -> int:
+        """Cells per battery."""
+        return int(self.mu.size)
+
+    def reset(self) -> None:
+        """No winner yet: every battery silent, the next ``step`` is a sensory event."""
+        self.state: int | None = None
+        self.tau = 0.0
+        self.activity = np.zeros(self.n_cells)
+
+    def tuning(self, tau: float | np.ndarray) -> np.ndarray:
+        """Battery activity at elapsed time ``tau`` (shape ``(n_cells,)``, or ``(len(tau), n)``)."""
+        t = check_finite("tau", tau)
+        if np.any(t < 0):
+            raise ValueError(f"tau must be >= 0 (time since the state won), got {tau!r}")
+        return np.exp(-0.5 * ((t[..., None] - self.mu) / self.sigma) ** 2)
+
+    def step(self, winner: int, dt: float) -> BatteryState:
+        """Advance by ``dt`` seconds with ``winner`` as the state; restart at a change of winner.
+
+        Returns the :class:`BatteryState`; at an event it also carries the previous state's
+        battery at the moment of the event, ``X(previous_tau)``.
+        """
+        winner = check_state_id("winner", winner)
+        dt = check_positive("dt", dt)
+        if self.state is None:  # first state ever: an event without a predecessor
+            self.state, self.tau = winner, 0.0
+            self.activity = self.tuning(0.0)
+            return BatteryState(winner, 0.0, self.activity, True)
+        if winner == self.state:
+            self.tau += dt
+            self.activity = self.tuning(self.tau)
+            return BatteryState(winner, self.tau, self.activity, False)
+        previous, previous_tau = self.state, self.tau + dt
+        previous_activity = self.tuning(previous_tau)
+        self.state, self.tau = winner, 0.0
+        self.activity = self.tuning(0.0)
+        return BatteryState(winner, 0.0, self.activity, True, previous, previous_tau,
+                            previous_activity)
+
+    def battery(self, state: int) -> np.ndarray:
+        """The battery of ``state``: its activity if it is the winner, else zeros."""
+        state = check_state_id("state", state)
+        if state == self.state:
+            return self.activity.copy()
+        return np.zeros(self.n_cells)
+
+    def _code(self, v: np.ndarray) -> float:
+        """Weighted mean of log(mu) over the contiguous peak of ``v`` above a fraction of max."""
+        i = int(np.argmax(v))
+        vmax = float(v[i])
+        if not vmax > 0.0:
+            return math.nan
+        th = self.params.readout_fraction * vmax
+        below = v <= th
+        left = np.flatnonzero(below[:i])
+        right = np.flatnonzero(below[i + 1:])
+        lo = int(left[-1]) + 1 if left.size else 0
+        hi = i + int(right[0]) if right.size else v.size - 1
+        w = v[lo:hi + 1] - th
+        return float(w @ self._log_mu[lo:hi + 1] / w.sum())
+
+    def readout(self, v: np.ndarray) -> float:
+        """Population readout of a time (s) from a pattern over the cells; nan if ``v`` is silent.
+
+        ``v`` may be a battery (the elapsed time) or learned weights from a battery (the delay
+        they encode). Calibrated so that ``readout(tuning(tau)) == tau`` inside the battery's
+        range; times beyond the range saturate at ``mu_min`` / ``mu_max``.
+        """
+        v = check_finite("pattern", v)
+        if v.shape != (self.n_cells,):
+            raise ValueError(f"pattern must have shape ({self.n_cells},), got {v.shape}")
+        code = self._code(v)
+        if math.isnan(code):
+            return math.nan
+        return float(np.interp(code, self._cal_code, self._cal_tau))

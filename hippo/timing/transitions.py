@@ -1,0 +1,312 @@
+"""Transition cells: which state comes next, and when (HIREL sec. II, eq. 1-3).
+
+Public API
+----------
+- :class:`TransitionParams` — NLMS parameters, ``min_strength``, ``anticipation``.
+- :class:`TransitionCells` — ``step(battery: BatteryState, dt) -> dict[(a, b), TransitionReadout]``
+  (the transitions out of the current winner); ``reset(keep_weights=False)``.
+  Queries: ``transitions`` (all keys), ``successors(a)``, ``prediction(key)``,
+  ``learned_delay(key)``, ``strength(key)``, ``elapsed_fraction(key)``, ``delay_over(key)``,
+  ``weights(key)``, ``expected(a, dt)`` (prediction of every successor of ``a`` over time).
+- :class:`TransitionReadout` — per transition and tick: ``prediction``, ``strength``,
+  ``learned_delay`` (s), ``elapsed_fraction`` and the **delay-over** flag ``delay_over``.
+
+A transition is keyed by the tuple ``(a, b)`` of integer state ids everywhere (the cognitive map
+uses the same key). Transitions are recruited when first experienced; learning never stops.
+
+The delay-over moment
+---------------------
+``delay_over`` becomes True at the tick where
+``elapsed_fraction >= 1 - (anticipation + latency) / T``,
+where ``elapsed_fraction = readout(battery) / readout(W_ab)``: the population readout of the
+elapsed time from the active battery divided by the population readout of the learned delay
+``T`` from the transition's synapses (:meth:`SpectralTiming.readout`), and only for transitions
+whose learned prediction is strong enough (``strength >= min_strength``). The anticipation of
+half a control tick makes the decision land on the tick nearest to ``T`` (a decision taken at a
+tick holds until the next one), which halves the quantisation error; the latency (one tick)
+is the time the decision takes to show in the senses, so the robot is *seen* leaving at ``T``.
+Typical use by an agent::
+
+    layer, timing = StateLayer(), SpectralTiming()
+    cells, nonocc = TransitionCells(timing), NonOccurrence()
+    ev = layer.step(place=acts, colour=obs.floor, sound=obs.sound, moving=obs.moving, dt=0.2)
+    readouts = cells.step(timing.step(ev.winner, 0.2), 0.2)
+    if readouts.get((still_here, moving_here)) and readouts[(still_here, moving_here)].delay_over:
+        ...                                   # patrol: the learned wait is over, move on
+    for key in nonocc.step(readouts, 0.2):    # extinction: predicted event did not come
+        ...                                   # inhibit the drive that chose this transition
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from hippo._checks import check_positive
+from hippo.timing.nlms import NLMSParams, learning_modulation, nlms_update
+from hippo.timing.spectral import BatteryState, SpectralTiming, check_state_id
+
+__all__ = ["TransitionCells", "TransitionParams", "TransitionReadout"]
+
+Key = tuple[int, int]
+
+
+@dataclass(frozen=True)
+class TransitionParams:
+    """Parameters of the transition cells.
+
+    nlms: the learning rule (see :class:`NLMSParams`; defaults learn a pairing in one event).
+    min_strength: a transition counts as predicted (``delay_over`` may fire) only if its
+        prediction at the learned delay reaches this (default 0.2; a learned one peaks ~0.8).
+    anticipation: seconds by which the delay-over flag anticipates the learned delay to land
+        on the nearest tick (default 0.1 s, half of the 0.2 s control tick).
+    latency: seconds between the tick at which the flag is read and the tick at which the
+        resulting action shows in the senses (default 0.2 s: an agent acting on the flag at
+        tick n is seen moving at tick n+1). The flag rises at ``T - anticipation - latency``
+        so that the *observed* end of the wait, which is what is learned again, falls on the
+        tick nearest ``T``; with a latency mis-set the closed loop drifts by the error each loop.
+    """
+
+    nlms: NLMSParams = field(default_factory=NLMSParams)
+    min_strength: float = 0.2
+    anticipation: float = 0.1
+    latency: float = 0.2
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.nlms, NLMSParams):
+            raise ValueError(f"nlms must be NLMSParams, got {type(self.nlms).__name__}")
+        check_positive("min_strength", self.min_strength)
+        check_positive("anticipation", self.anticipation, allow_zero=True)
+        check_positive("latency", self.latency, allow_zero=True)
+
+
+@dataclass(frozen=True)
+class TransitionReadout:
+    """One transition at one tick (only transitions out of the current winner are read out).
+
+    prediction: ``X_ab = sum_j W_ab,j X^a_j(tau)``, the transition cell's activity.
+    strength: the prediction the learned weights give at the learned delay.
+    learned_delay: population readout of the delay stored in the weights, seconds.
+    elapsed_fraction: readout of the elapsed time from the battery / learned delay.
+    delay_over: the learned delay is over (see the module docstring).
+    """
+
+    key: Key
+    prediction: float
+    strength: float
+    learned_delay: float
+    elapsed_fraction: float
+    delay_over: bool
+
+
+class TransitionCells:
+    r"""Transition prediction cells learning ``A -> B`` with its timing (HIREL eq. 1-3).
+
+    The cell of transition :math:`(a,b)` predicts state :math:`b` from the battery of state
+    :math:`a`: :math:`X_{ab}(\tau) = \sum_j W_{ab,j} X^a_j(\tau)`. Its weights follow the NLMS
+    rule of :mod:`hippo.timing.nlms` with :math:`X^{CS}` = the battery of :math:`a` and
+    :math:`X^{US}` = the activity of state :math:`b` (1 when it is the winner, else 0):
+
+    .. math:: \frac{dW_{ab,j}}{dt} = \alpha\,\eta_b\left[\frac{(X^{US}_b - X_{ab})\,X^a_j}
+              {\sum_k (X^a_k)^2 + \sigma_1} - \lambda X^{US}_b W_{ab,j}\right],\quad
+              \eta_b = |X^{US}_b - m^{US}_b| + \sigma_2,\quad
+              m^{US}_b(t) = \gamma\,m^{US}_b(t-dt) + (1-\gamma)\,X^{US}_b(t).
+
+    At the event :math:`a \to b` the CS is :math:`a`'s battery at that moment
+    (``BatteryState.previous_activity``), so the cell associates :math:`b` with the time spent
+    in :math:`a` (Hirel et al., sec. II and Fig. 1). Between events the cells of the winner's
+    transitions see :math:`X^{US} = 0` and learn only as much as :math:`\eta` allows. After
+    learning, entering :math:`a` makes :math:`X_{ab}` rise to a bell-shaped peak at the learned
+    delay whose width grows with the delay (Weber). A never-experienced transition has no cell
+    and predicts nothing.
+    """
+
+    def __init__(self, timing: SpectralTiming, params: TransitionParams | None = None) -> None:
+        if not isinstance(timing, SpectralTiming):
+            raise ValueError(f"timing must be a SpectralTiming, got {type(timing).__name__}")
+        self.timing = timing
+        self.params = params or TransitionParams()
+        self.reset()
+
+    # ------------------------------------------------------------------ state
+    def reset(self, *, keep_weights: bool = False) -> None:
+        """Forget the current trial (and, unless ``keep_weights``, every learned transition)."""
+        m = self.timing.n_cells
+        if not keep_weights or not hasattr(self, "_w"):
+            self._w = np.zeros((8, m))
+            self._keys: list[Key] = []
+            self._index: dict[Key, int] = {}
+            self._out: dict[int, list[int]] = {}
+            self._slot: dict[int, int] = {}
+            self._delay = np.zeros(8)
+            self._strength = np.zeros(8)
+        self._m = np.zeros(max(len(self._slot), 8))
+        self.state: int | None = None
+        self.elapsed = math.nan
+        self.readouts: dict[Key, TransitionReadout] = {}
+
+    def _state_slot(self, s: int) -> int:
+        slot = self._slot.get(s)
+        if slot is None:
+            slot = self._slot[s] = len(self._slot)
+            if slot >= self._m.size:
+                self._m = np.concatenate([self._m, np.zeros(self._m.size)])
+        return slot
+
+    def _recruit(self, key: Key) -> int:
+        row = len(self._keys)
+        if row >= self._w.shape[0]:
+            self._w = np.concatenate([self._w, np.zeros_like(self._w)])
+            self._delay = np.concatenate([self._delay, np.zeros_like(self._delay)])
+            self._strength = np.concatenate([self._strength, np.zeros_like(self._strength)])
+        self._keys.append(key)
+        self._index[key] = row
+        self._out.setdefault(key[0], []).append(row)
+        return row
+
+    def _refresh(self, rows: list[int]) -> None:
+        """Re-read learned delay and strength of ``rows`` after their weights changed."""
+        for r in rows:
+            d = self.timing.readout(self._w[r])
+            self._delay[r] = d
+            self._strength[r] = 0.0 if math.isnan(d) else float(
+                self._w[r] @ self.timing.tuning(d))
+
+    # ------------------------------------------------------------------ learning
+    def _learn(self, rows: list[int], cs: np.ndarray, winner: int, dt: float) -> None:
+        p = self.params.nlms
+        targets = [self._keys[r][1] for r in rows]
+        us = np.array([1.0 if b == winner else 0.0 for b in targets])
+        m_us = self._m[[self._slot[b] for b in targets]]
+        eta = learning_modulation(us, m_us, p.sigma2)
+        if not np.any(eta > 0.0):
+            return
+        self._w[rows], _ = nlms_update(self._w[rows], cs, us, eta, p, dt)
+        self._refresh(rows)
+
+    def step(self, battery: BatteryState, dt: float) -> dict[Key, TransitionReadout]:
+        """One tick: learn from the battery state, then read out the winner's transitions.
+
+        ``battery`` is what :meth:`SpectralTiming.step` returned this tick. Returns the
+        readouts of the transitions out of the current winner (also in ``self.readouts``).
+        """
+        if not isinstance(battery, BatteryState):
+            raise ValueError(f"battery must be a BatteryState, got {type(battery).__name__}")
+        dt = check_positive("dt", dt)
+        p = self.params.nlms
+        step = p.alpha * dt * (p.gamma + p.sigma2)  # eta <= gamma + sigma2 for US in {0, 1}
+        if step >= 2.0:
+            raise ValueError(f"NLMS step alpha*dt*eta = {step:.3g} >= 2 is unstable; "
+                             "lower nlms.alpha or dt")
+        winner = check_state_id("battery.state", battery.state)
+        if battery.activity.shape != (self.timing.n_cells,):
+            raise ValueError(f"battery.activity must have shape ({self.timing.n_cells},), "
+                             f"got {battery.activity.shape}")
+        # eq. 3 for every known state: X^US_b(t) = 1 for the winner, 0 otherwise
+        slot = self._state_slot(winner)
+        self._m *= p.gamma
+        self._m[slot] += 1.0 - p.gamma
+        self._m[self._m < 1e-12] = 0.0
+        if battery.changed and battery.previous is not None:
+            a = check_state_id("battery.previous", battery.previous)
+            self._state_slot(a)
+            if battery.previous_activity is None:
+                raise ValueError("battery.previous_activity is missing at an event")
+            if winner != a and (a, winner) not in self._index:
+                self._recruit((a, winner))
+            rows = self._out.get(a, [])
+            if rows:
+                self._learn(rows, battery.previous_activity, winner, dt)
+        else:
+            rows = self._out.get(winner, [])
+            if rows:
+                self._learn(rows, battery.activity, winner, dt)
+        self.state = winner
+        self.readouts = self._read(winner, battery.activity)
+        return self.readouts
+
+    # ------------------------------------------------------------------ readout
+    def _read(self, a: int, activity: np.ndarray) -> dict[Key, TransitionReadout]:
+        rows = self._out.get(a, [])
+        if not rows:
+            self.elapsed = math.nan
+            return {}
+        self.elapsed = self.timing.readout(activity)
+        preds = self._w[rows] @ activity
+        out = {}
+        lead = self.params.anticipation + self.params.latency
+        for r, x in zip(rows, preds):
+            d, s = float(self._delay[r]), float(self._strength[r])
+            frac = self.elapsed / d if d > 0 else math.nan
+            over = bool(s >= self.params.min_strength and frac >= 1.0 - lead / d)
+            key = self._keys[r]
+            out[key] = TransitionReadout(key, float(x), s, d, frac, over)
+        return out
+
+    def _check_key(self, key: Key) -> Key:
+        if not isinstance(key, tuple) or len(key) != 2:
+            raise ValueError(f"a transition key is a tuple (a, b) of state ids, got {key!r}")
+        a = check_state_id("transition source", key[0])
+        b = check_state_id("transition target", key[1])
+        for s in (a, b):
+            if s not in self._slot:
+                raise ValueError(f"unknown state id {s}: these transition cells never saw it")
+        return (a, b)
+
+    @property
+    def transitions(self) -> list[Key]:
+        """Every transition learned so far, in order of recruitment."""
+        return list(self._keys)
+
+    def successors(self, a: int) -> list[int]:
+        """States ``b`` with a learned transition ``(a, b)``."""
+        a = check_state_id("state", a)
+        if a not in self._slot:
+            raise ValueError(f"unknown state id {a}: these transition cells never saw it")
+        return [self._keys[r][1] for r in self._out.get(a, [])]
+
+    def weights(self, key: Key) -> np.ndarray:
+        """Copy of the weights of transition ``key`` (zeros if never experienced)."""
+        key = self._check_key(key)
+        r = self._index.get(key)
+        return np.zeros(self.timing.n_cells) if r is None else self._w[r].copy()
+
+    def learned_delay(self, key: Key) -> float:
+        """Delay stored in the transition's weights, seconds (nan if never experienced)."""
+        key = self._check_key(key)
+        r = self._index.get(key)
+        return math.nan if r is None else float(self._delay[r])
+
+    def strength(self, key: Key) -> float:
+        """Prediction the transition gives at its learned delay (0 if never experienced)."""
+        key = self._check_key(key)
+        r = self._index.get(key)
+        return 0.0 if r is None else float(self._strength[r])
+
+    def prediction(self, key: Key) -> float:
+        """Current activity of the transition cell (0 unless its source is the winner)."""
+        key = self._check_key(key)
+        ro = self.readouts.get(key)
+        return 0.0 if ro is None else ro.prediction
+
+    def elapsed_fraction(self, key: Key) -> float:
+        """Elapsed time in the source state / learned delay (0 unless the source is the winner)."""
+        key = self._check_key(key)
+        ro = self.readouts.get(key)
+        return 0.0 if ro is None or math.isnan(ro.elapsed_fraction) else ro.elapsed_fraction
+
+    def delay_over(self, key: Key) -> bool:
+        """True once the learned delay of ``key`` is over while its source state is the winner."""
+        key = self._check_key(key)
+        ro = self.readouts.get(key)
+        return bool(ro is not None and ro.delay_over)
+
+    def expected(self, a: int, tau: np.ndarray) -> dict[Key, np.ndarray]:
+        """Prediction of every successor of ``a`` at elapsed times ``tau`` (no learning)."""
+        a = check_state_id("state", a)
+        if a not in self._slot:
+            raise ValueError(f"unknown state id {a}: these transition cells never saw it")
+        x = self.timing.tuning(np.asarray(tau, dtype=float))
+        return {self._keys[r]: x @ self._w[r] for r in self._out.get(a, [])}

@@ -1,0 +1,152 @@
+"""State layer: hysteresis against flicker, salient events, conjunctive states, bad input."""
+
+import math
+
+import numpy as np
+import pytest
+
+from hippo.perception.states import StateKey, StateLayer, StateLayerParams
+
+DT = 0.2
+
+
+def test_common_scale_by_hand():
+    fixed = StateLayer(StateLayerParams(normalize="fixed", place_scale=2.0, smoothing=0.0))
+    fixed.step(np.array([1.0, -3.0, 4.0]), dt=DT)
+    assert fixed.place_activity == pytest.approx([math.tanh(0.5), 0.0, math.tanh(2.0)])
+    # per unit: z = (a - mean) / sqrt(var) with the prior mean 0, var 1; then the EMA update
+    unit = StateLayer(StateLayerParams(normalize="unit", norm_tau=2.0, smoothing=0.0))
+    unit.step(np.array([3.0]), dt=DT)
+    assert unit.place_activity[0] == pytest.approx(math.tanh(3.0 / 2.0))
+    unit.step(np.array([3.0]), dt=DT)  # mean 0.1*3 = 0.3, var 0.9*(1 + 0.1*9) = 1.71
+    assert unit.place_activity[0] == pytest.approx(math.tanh((3.0 - 0.3) / math.sqrt(1.71) / 2))
+    # pooled: one mean and variance for the population: after [3, 1] mean 0.2, var 1.35
+    pooled = StateLayer(StateLayerParams(norm_tau=2.0, smoothing=0.0))
+    pooled.step(np.array([3.0, 1.0]), dt=DT)
+    pooled.step(np.array([3.0, 1.0]), dt=DT)
+    z = (np.array([3.0, 1.0]) - 0.2) / math.sqrt(0.9 * (1.0 + 0.1 * 5.0))
+    assert pooled.place_activity == pytest.approx(np.tanh(z / 2))
+    # the leaky place neuron: x <- k x + (1 - k) target, k = exp(-dt / smoothing)
+    leaky = StateLayer(StateLayerParams(normalize="fixed", smoothing=0.4))
+    leaky.step(np.array([0.0]), dt=DT)
+    leaky.step(np.array([2.0]), dt=DT)
+    assert leaky.place_activity[0] == pytest.approx((1 - math.exp(-0.5)) * math.tanh(1.0))
+
+
+def test_noisy_place_cells_do_not_flicker():
+    rng = np.random.default_rng(0)
+    layer = StateLayer()
+    base = np.array([2.0, 1.8, 0.0, 0.0])  # two overlapping place fields, very noisy
+    naive, changes = [], 0
+    for _ in range(1000):
+        x = base + 0.4 * rng.standard_normal(4)
+        ev = layer.step(x, moving=True, dt=DT)
+        changes += ev.changed
+        naive.append(int(np.argmax(x)))
+    naive_switches = int(np.count_nonzero(np.diff(naive)))
+    assert naive_switches > 300
+    assert changes == 1  # the first winner, then no switch in 200 s
+
+
+def test_clear_change_switches_within_hold_time():
+    rng = np.random.default_rng(1)
+    layer = StateLayer()
+    for _ in range(50):
+        layer.step(np.array([2.5, 0.0, 0.0]) + 0.2 * rng.standard_normal(3), moving=True, dt=DT)
+    first = layer.winner
+    ticks = 0
+    while layer.winner == first:
+        ev = layer.step(np.array([0.0, 2.5, 0.0]) + 0.2 * rng.standard_normal(3),
+                        moving=True, dt=DT)
+        ticks += 1
+        assert ticks <= math.ceil(layer.params.hold_time / DT) + 1  # + the leaky rise
+    assert ev.changed and ev.previous == first and layer.describe(ev.winner) == "place 1"
+    assert ev.since == pytest.approx(ev.t)
+
+
+def test_event_states_win_at_once_and_carry_context():
+    layer = StateLayer()
+    place = np.array([3.0, 0.0])
+    for _ in range(5):
+        layer.step(place, moving=True, dt=DT)
+    p0 = layer.find("place", 0)
+    ev = layer.step(place, moving=False, dt=DT)  # the robot stops: salient, immediate
+    assert ev.changed and layer.key(ev.winner) == StateKey("still", None, p0)
+    assert layer.describe(ev.winner) == "still@place 0"
+    still = ev.winner
+    for _ in range(30):  # standing still, noisy places cannot take over
+        assert not layer.step(place + 0.5, moving=False, dt=DT).changed
+    ev = layer.step(place, sound=True, moving=False, dt=DT)
+    assert ev.changed and ev.previous == still and layer.describe(ev.winner) == "sound"
+    # the sound is one tick long: then a place takes over after the hold time
+    evs = [layer.step(place, moving=False, dt=DT) for _ in range(4)]
+    assert [e.changed for e in evs] == [False, False, True, False]
+    assert evs[2].winner == p0
+    # moving is transient: after its onset it yields to the places
+    ev = layer.step(np.array([0.0, 3.0]), moving=True, dt=DT)
+    assert layer.describe(ev.winner) == "moving@place 0"
+    names = [layer.describe(layer.step(np.array([0.0, 3.0]), moving=True, dt=DT).winner)
+             for _ in range(12)]
+    assert names[3] == "moving@place 0" and names[-1] == "place 1"
+    # still at another place is another state
+    ev = layer.step(np.array([0.0, 3.0]), moving=False, dt=DT)
+    assert ev.winner != still and layer.describe(ev.winner) == "still@place 1"
+
+
+def test_floor_colour_is_a_salient_context():
+    layer = StateLayer()
+    layer.step(np.array([2.0]), colour=0, moving=True, dt=DT)
+    ev = layer.step(np.array([2.0]), colour=3, moving=True, dt=DT)
+    assert ev.changed and layer.describe(ev.winner) == "colour 3"
+    for _ in range(10):  # on the colour, places cannot beat it
+        assert not layer.step(np.array([3.0]), colour=3, moving=True, dt=DT).changed
+    ev = layer.step(np.array([3.0]), colour=3, moving=False, dt=DT)
+    assert layer.describe(ev.winner) == "still@colour 3"
+
+
+def test_first_tick_and_recruitment():
+    layer = StateLayer(n_place=2)
+    assert layer.n_states == 2
+    ev = layer.step(np.array([0.1, 0.1]), dt=DT)
+    assert ev.changed and ev.previous is None and ev.novel and ev.t == 0.0
+    ev = layer.step(np.array([0.1, 0.1, 4.0]), dt=DT)  # a new place cell is recruited
+    assert layer.n_states == 3 and layer.key(2) == StateKey("place", 2)
+    assert not ev.novel
+    sid = layer.recruit("place", 5)
+    assert layer.key(sid) == StateKey("place", 5) and layer.n_states == 6
+    assert layer.recruit("colour", 2) == layer.find("colour", 2)
+    only_moving = StateLayer()
+    assert only_moving.describe(only_moving.step(moving=False, dt=DT).winner) == "still"
+    layer.reset(keep_states=True)
+    assert layer.n_states == 7 and layer.winner is None
+    layer.reset()
+    assert layer.n_states == 2
+
+
+def test_bad_input_is_named():
+    layer = StateLayer()
+    with pytest.raises(ValueError, match="place activities"):
+        layer.step(np.array([1.0, np.nan]), dt=DT)
+    with pytest.raises(ValueError, match="dt"):
+        layer.step(np.ones(2), dt=-DT)
+    with pytest.raises(ValueError, match="dt"):
+        layer.step(np.ones(2), dt=float("nan"))
+    layer.step(np.ones(2), dt=DT)
+    with pytest.raises(ValueError, match="shrank"):
+        layer.step(np.ones(1), dt=DT)
+    with pytest.raises(ValueError, match="unknown state id 42"):
+        layer.describe(42)
+    with pytest.raises(ValueError, match="unknown state"):
+        layer.find("colour", 9)
+    with pytest.raises(ValueError, match="colour"):
+        layer.step(np.ones(2), colour=1.5, dt=DT)
+    with pytest.raises(ValueError, match="sound"):
+        layer.step(np.ones(2), sound=float("nan"), dt=DT)
+    with pytest.raises(ValueError, match="moving"):
+        layer.step(np.ones(2), moving=0.5, dt=DT)
+    with pytest.raises(ValueError, match="nothing to compete"):
+        StateLayer().step(dt=DT)
+    with pytest.raises(ValueError, match="kind"):
+        layer.recruit("smell")
+    with pytest.raises(ValueError, match="margin"):
+        StateLayerParams(margin=2.0)

@@ -1,0 +1,148 @@
+"""Transition cells: timed predictions of the next state, Weber widths, re-learning."""
+
+import math
+
+import numpy as np
+import pytest
+from timing_helpers import DT, make, trial
+
+from hippo.timing import BatteryState, SpectralTiming, TransitionCells, TransitionParams
+
+DELAYS = (2.0, 7.0, 20.0, 45.0)
+
+
+def learned(delay: float, pairings: int = 4, seed: int = 0):
+    timing, cells, nonocc, rng = make(seed)
+    for _ in range(pairings):
+        trial(timing, cells, 0, 1, delay, rng=rng)
+    return timing, cells, nonocc, rng
+
+
+def test_one_event_is_one_euler_step_of_eq1_by_hand():
+    timing = SpectralTiming()
+    cells = TransitionCells(timing)
+    p = cells.params.nlms
+    cells.step(timing.step(0, DT), DT)
+    for _ in range(9):
+        cells.step(timing.step(0, DT), DT)
+    ev = timing.step(1, DT)  # 0 -> 1 after 2.0 s
+    cells.step(ev, DT)
+    x = timing.tuning(2.0)
+    # m_1 = gamma*0 + (1-gamma)*1, eta = |1 - m_1| + sigma2 = gamma; W was 0 so X = 0
+    eta = p.gamma + p.sigma2
+    expected = DT * p.alpha * eta * (1.0 - 0.0) * x / (x @ x + p.sigma1)
+    assert np.allclose(cells.weights((0, 1)), expected, rtol=1e-12, atol=1e-15)
+    assert cells.transitions == [(0, 1)]
+
+
+@pytest.mark.parametrize("delay", DELAYS)
+def test_prediction_peaks_at_or_just_before_the_learned_delay(delay):
+    timing, cells, _, _ = learned(delay)
+    probe = trial(timing, cells, 0, 1, None, jitter=0.0, t_max=2 * delay)
+    t_peak = probe["tau"][np.argmax(probe["pred"])]
+    assert delay - max(0.1 * delay, DT) - 1e-6 <= t_peak <= delay + 1e-6
+    # bell shaped: rises before the peak, falls after it, silent at the start
+    assert probe["pred"][0] < 0.01 * probe["pred"].max()
+    assert probe["pred"][-1] < 0.05 * probe["pred"].max()
+    assert 0.6 < probe["pred"].max() < 1.05
+
+
+def test_prediction_width_grows_with_the_delay_weber():
+    widths = []
+    for delay in DELAYS:
+        _, cells, _, _ = learned(delay)
+        tau = np.linspace(0.01, 2.5 * delay, 20001)
+        x = cells.expected(0, tau)[(0, 1)]
+        above = tau[x >= 0.5 * x.max()]
+        widths.append(above[-1] - above[0])
+    relative = np.array(widths) / np.array(DELAYS)
+    assert np.all(np.diff(widths) > 0)
+    assert relative.max() / relative.min() < 1.1  # width proportional to delay
+    assert 0.2 < relative.mean() < 0.5
+
+
+def test_never_seen_transition_predicts_nothing():
+    timing, cells, _, _ = learned(7.0)
+    cells.step(timing.step(2, DT), DT)  # state 2 is known, but never followed 0
+    ro = cells.step(timing.step(0, DT), DT)
+    assert set(ro) == {(0, 1)}
+    for _ in range(40):
+        ro = cells.step(timing.step(0, DT), DT)
+    assert cells.prediction((0, 2)) == 0.0
+    assert not cells.delay_over((0, 2)) and cells.elapsed_fraction((0, 2)) == 0.0
+    assert math.isnan(cells.learned_delay((0, 2))) and cells.strength((0, 2)) == 0.0
+    assert not np.any(cells.weights((0, 2)))
+    assert cells.prediction((0, 1)) > 0.5
+    assert cells.successors(0) == [1] and cells.successors(2) == [0]
+    # and a state that never had a successor has no readouts at all
+    assert cells.step(timing.step(5, DT), DT) == {}
+
+
+@pytest.mark.parametrize(("old", "new"), [(7.0, 12.0), (12.0, 7.0)])
+def test_changed_delay_is_relearned_within_a_few_trials(old, new):
+    timing, cells, _, rng = learned(old, pairings=5)
+    assert cells.learned_delay((0, 1)) == pytest.approx(old, rel=0.03)
+    for _ in range(3):
+        trial(timing, cells, 0, 1, new, rng=rng)
+    tau = np.arange(DT, 2 * max(old, new), DT)
+    x = cells.expected(0, tau)[(0, 1)]
+    assert tau[np.argmax(x)] == pytest.approx(new, rel=0.05)
+    assert cells.learned_delay((0, 1)) == pytest.approx(new, rel=0.03)
+
+
+@pytest.mark.parametrize("delay", [2.0, 7.0, 24.1, 60.0])
+def test_delay_over_lands_on_the_learned_delay(delay):
+    timing, cells, _, _ = learned(delay, seed=1)
+    lead = cells.params.anticipation + cells.params.latency
+    probe = trial(timing, cells, 0, 1, None, jitter=0.0, t_max=1.5 * delay)
+    first = probe["tau"][np.argmax(probe["over"])]
+    assert probe["over"].any() and np.all(probe["over"][np.argmax(probe["over"]):])
+    # the flag rises one tick (the latency) before the tick nearest the delay
+    assert abs(first + cells.params.latency - delay) <= DT / 2 + 0.03 * delay
+    # elapsed fraction = population readout of the elapsed time / learned delay
+    t_hat = cells.learned_delay((0, 1))
+    assert probe["frac"] == pytest.approx(probe["tau"] / t_hat, rel=0.01, abs=0.02)
+    assert lead == pytest.approx(0.3)
+
+
+@pytest.mark.parametrize("delay", [2.0, 11.6, 45.0])
+def test_closed_loop_reproduction_is_precise(delay):
+    """The agent leaves when delay_over rises and the leaving is learned again (patrol)."""
+    timing, cells, _, rng = learned(delay, seed=2)
+    ends = [trial(timing, cells, 0, 1, None, rng=rng, self_end=True, t_max=3 * delay)["end"]
+            for _ in range(5)]
+    err = np.array(ends) / delay - 1.0
+    assert abs(err.mean()) < 0.03
+    assert np.abs(err).max() < max(0.03, 0.11 / delay)  # tick quantisation at short delays
+
+
+def test_bad_input_is_named():
+    timing, cells, _, _ = learned(2.0, pairings=1)
+    with pytest.raises(ValueError, match="unknown state id 57"):
+        cells.prediction((0, 57))
+    with pytest.raises(ValueError, match="unknown state id 57"):
+        cells.successors(57)
+    with pytest.raises(ValueError, match="tuple"):
+        cells.delay_over(3)
+    with pytest.raises(ValueError, match="state id"):
+        cells.learned_delay((-1, 0))
+    with pytest.raises(ValueError, match="BatteryState"):
+        cells.step(np.zeros(timing.n_cells), DT)
+    with pytest.raises(ValueError, match="dt"):
+        cells.step(timing.step(0, DT), -DT)
+    bad = BatteryState(0, 0.0, np.zeros(5), False)
+    with pytest.raises(ValueError, match="shape"):
+        cells.step(bad, DT)
+    with pytest.raises(ValueError, match="unstable"):
+        cells.step(timing.step(0, DT), 1.0)
+    with pytest.raises(ValueError, match="min_strength"):
+        TransitionParams(min_strength=-1.0)
+
+
+def test_reset_keeps_or_forgets_weights():
+    _, cells, _, _ = learned(7.0, pairings=2)
+    w = cells.weights((0, 1))
+    cells.reset(keep_weights=True)
+    assert np.array_equal(cells.weights((0, 1)), w) and cells.readouts == {}
+    cells.reset()
+    assert cells.transitions == []
