@@ -8,6 +8,7 @@ corners, pillars, alcoves).
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable
 
 import numpy as np
@@ -104,61 +105,74 @@ def maze_e1(cell: float = 40.0, n: int = 8, seed: int = 1) -> Arena:
 
 
 def goal_arena() -> Arena:
-    """HIREL's place-preference arena scaled to the e-puck: 150 × 150 cm, goal zone 24 × 12 cm.
+    """HIREL's place-preference arena scaled to the e-puck: 150 × 150 cm around a central block.
 
-    HIREL used a 1 m × 0.5 m zone in a 5 m × 5 m room; here the zone keeps that proportion of a
-    short side (24 × 12 cm), so the robot crosses it at its default speed (5 cm/s) in 2.4–4.8 s,
-    well under the 7 s reward delay. Interior walls make four distinct quadrants around an open
-    centre: a chamfered corner (south-west), a pillar (north-east), a buttress (south-east) and
-    the goal along the west wall of the north-west quadrant (colour 1).
+    HIREL used an open 5 m × 5 m room with a 1 m × 0.5 m goal zone. The e-puck's 30 cm infra-red
+    rays see nothing in an open room, so a central block turns the arena into four corridors of
+    different widths (west 24 cm, south 30 cm, east 36 cm, north 28 cm), narrow enough for the
+    rays to reach both walls, with chamfered south-west and north-east corners, a fin in the
+    south corridor, a notch in the block's south face and a bump on its east face: every
+    stretch looks different within sensor range. The goal zone (colour 1) spans the west
+    corridor and is 12 cm long, so the robot crosses it at its default speed (5 cm/s) in about
+    2.4 s, well under the 7 s reward delay.
     """
     b = ArenaBuilder("goal-arena", 150, 150)
-    # outer walls with a 25 cm chamfer in the south-west corner
-    b.polyline([(25, 0), (150, 0), (150, 150), (0, 150), (0, 25)], closed=True)
-    # interior walls: a cross with an open centre
-    b.wall((75, 0), (75, 40)).wall((75, 110), (75, 150))
-    b.wall((0, 75), (40, 75)).wall((110, 75), (150, 75))
-    b.box((112, 112, 124, 124))  # pillar, north-east
-    b.polyline([(150, 30), (135, 30), (135, 45), (150, 45)])  # a buttress, south-east
-    b.zone("goal", (2, 100, 26, 112), colour=1)
-    b.landmark("goal", 14, 106)
-    b.region("south_west", (0, 0, 75, 75)).region("south_east", (75, 0, 150, 75))
-    b.region("north_west", (0, 75, 75, 150)).region("north_east", (75, 75, 150, 150))
-    b.grid_locations(6, 6)
-    b.start(110, 20, np.pi)
-    arena = b.build()
-    free = [i for i, (x, y) in enumerate(arena.locations) if arena.is_free(x, y, 6.0)]
-    return _with_locations(arena, arena.locations[free])
+    b.polyline([(20, 0), (150, 0), (150, 130), (130, 150), (0, 150), (0, 20)], closed=True)
+    b.polyline([(24, 30), (60, 30), (60, 36), (76, 36), (76, 30), (114, 30), (114, 70),
+                (108, 70), (108, 82), (114, 82), (114, 122), (24, 122)], closed=True)
+    b.polyline([(95, 0), (95, 10), (103, 10), (103, 0)])        # fin, south corridor
+    b.zone("goal", (0, 70, 24, 82), colour=1)
+    b.landmark("goal", 12, 76)
+    b.region("west", (0, 30, 24, 122)).region("south", (0, 0, 150, 30))
+    b.region("east", (114, 30, 150, 122)).region("north", (0, 122, 150, 150))
+    for x, y in _corridor_points([(12, 100), (12, 76), (12, 45), (18, 18), (45, 15), (85, 15),
+                                  (120, 15), (132, 40), (132, 76), (132, 110), (125, 136),
+                                  (85, 136), (45, 136), (17, 134)]):
+        b.location(x, y)
+    b.landmark("start-south", 85, 15).landmark("start-east", 132, 100)
+    b.landmark("start-north", 60, 136).landmark("start-west", 12, 105)
+    b.start(120, 15, 0.0)
+    return b.build()
 
 
 def patrol_course() -> Arena:
-    """A 160 × 120 cm loop around a central block, 35 cm-wide corridors, three checkpoints.
+    """A 160 × 120 cm loop around a central block with corridors of different widths.
 
-    The corners differ (two chamfered, one square, one with a notch) so places along the loop
-    are distinct within IR range. Landmarks ``checkpoint-1..3`` and ``loop`` waypoints (the
-    centre line of the corridor, counter-clockwise) are provided for the teacher.
+    South 22 cm, east 40 cm, north 30 cm (22 cm at a notch), west 28 cm; two chamfered corners:
+    places along the loop are distinct within IR range. Landmarks ``checkpoint-1..3`` lie in the
+    south, east and north corridors; :func:`loop_waypoints` is the corridor centre line,
+    counter-clockwise, for the teacher's leash.
     """
     b = ArenaBuilder("patrol-course", 160, 120)
     b.polyline([(0, 0), (140, 0), (160, 20), (160, 120), (20, 120), (0, 100)], closed=True)
-    b.box((35, 35, 125, 85))
-    b.polyline([(70, 85), (70, 95), (90, 95), (90, 85)])   # a notch into the top corridor
-    b.box((140, 55, 160, 62))                               # a fin on the right wall
-    b.landmark("checkpoint-1", 80, 17).landmark("checkpoint-2", 142, 80)
-    b.landmark("checkpoint-3", 40, 103)
-    b.region("south", (0, 0, 160, 35)).region("east", (125, 35, 160, 85))
-    b.region("north", (0, 85, 160, 120)).region("west", (0, 35, 35, 85))
-    loop = loop_waypoints()
-    for x, y in loop:
+    b.box((28, 22, 120, 90))
+    b.polyline([(70, 90), (70, 98), (90, 98), (90, 90)])   # a notch into the north corridor
+    b.landmark("checkpoint-1", 80, 11).landmark("checkpoint-2", 140, 56)
+    b.landmark("checkpoint-3", 50, 105)
+    b.region("south", (0, 0, 160, 22)).region("east", (120, 22, 160, 90))
+    b.region("north", (0, 90, 160, 120)).region("west", (0, 22, 28, 90))
+    for x, y in _corridor_points(loop_waypoints()):
         b.location(x, y)
-    b.start(20, 17, 0.0)
+    b.start(14, 60, -np.pi / 2)
     return b.build()
 
 
 def loop_waypoints() -> list[tuple[float, float]]:
-    """Centre line of the patrol course's corridor, counter-clockwise from the south-west."""
-    pts = [(20, 17), (50, 17), (80, 17), (110, 17), (137, 20), (142, 40), (146, 70), (142, 100),
-           (110, 103), (80, 107), (50, 103), (20, 98), (17, 70), (17, 40)]
+    """Centre line of the patrol course's corridor, counter-clockwise from the west corridor."""
+    pts = [(14, 60), (14, 30), (20, 12), (50, 11), (80, 11), (110, 11), (133, 16), (140, 30),
+           (140, 56), (140, 80), (134, 103), (110, 105), (80, 109), (50, 105), (26, 102),
+           (14, 80), (14, 60)]
     return [(float(x), float(y)) for x, y in pts]
+
+
+def _corridor_points(pts: list[tuple[float, float]], spacing: float = 15.0
+                     ) -> list[tuple[float, float]]:
+    """Points every ``spacing`` cm along a polyline (labelled locations along corridors)."""
+    out: list[tuple[float, float]] = []
+    for (x0, y0), (x1, y1) in itertools.pairwise(pts):
+        n = max(1, round(np.hypot(x1 - x0, y1 - y0) / spacing))
+        out.extend((x0 + (x1 - x0) * k / n, y0 + (y1 - y0) * k / n) for k in range(n))
+    return out
 
 
 def _with_locations(arena: Arena, locations: np.ndarray) -> Arena:

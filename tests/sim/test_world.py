@@ -285,9 +285,19 @@ def test_arenas_have_their_labelled_locations():
     assert len(arenas.two_rooms().locations) == 25
     assert len(arenas.maze_e1().locations) == 64
     ga = arenas.goal_arena()
-    (x0, y0, x1, y1) = ga.zones[0].rect
-    # crossing the goal zone at the default speed takes well under the 7 s reward delay
-    assert max(x1 - x0, y1 - y0) / 5.08 < 5.0
     assert ga.geodesic_distance(ga.start_pose[:2], ga.zones[0].rect) < float("inf")
     pc = arenas.patrol_course()
     assert all(pc.is_free(*pc.landmarks[f"checkpoint-{i}"], 6.0) for i in (1, 2, 3))
+
+
+def test_robot_crosses_goal_zone_well_under_the_reward_delay():
+    rec = record("goal-arena", 4000, seed=0, rho=0.0, progress=False)
+    runs, n = [], 0
+    for f in rec.floor:
+        if f == 1:
+            n += 1
+        elif n:
+            runs.append(n)
+            n = 0
+    assert len(runs) >= 2  # the wall follower's tour passes the goal zone
+    assert max(runs) * rec.dt < 0.7 * 7.0  # even at the follower's drifting (slower) speed
