@@ -83,22 +83,46 @@ def place_fields_locations(labels: np.ndarray, Y: np.ndarray, n_locations: int) 
         return np.where(cnt[:, None] > 0, sums / cnt[:, None], np.nan)
 
 
-def location_neighbors(locations: np.ndarray, radius: float | None = None) -> np.ndarray:
-    """Boolean (L, L) matrix: locations within ``radius`` of each other (diagonal included).
+def _segments_cross(p: np.ndarray, q: np.ndarray, walls: np.ndarray) -> np.ndarray:
+    """(P,) bool: does segment p[i]-q[i] properly cross any wall segment (n, 4)?"""
+    a, b = walls[None, :, :2], walls[None, :, 2:]
+    p, q = p[:, None, :], q[:, None, :]
 
-    Default radius: 1.5 × the median nearest-neighbour distance between reference locations,
-    i.e. "one step" between adjacent labelled locations.
+    def orient(u, v, w):
+        return np.sign((v[..., 0] - u[..., 0]) * (w[..., 1] - u[..., 1])
+                       - (v[..., 1] - u[..., 1]) * (w[..., 0] - u[..., 0]))
+
+    d1, d2 = orient(a, b, p), orient(a, b, q)
+    d3, d4 = orient(p, q, a), orient(p, q, b)
+    return np.any((d1 * d2 <= 0) & (d3 * d4 <= 0) & ~((d1 == 0) & (d2 == 0)), axis=1)
+
+
+def location_neighbors(locations: np.ndarray, radius: float | None = None,
+                       walls: np.ndarray | None = None) -> np.ndarray:
+    """Boolean (L, L) matrix: locations "one step" apart (diagonal included).
+
+    Two locations are neighbours if they lie within ``radius`` of each other and, when
+    ``walls`` (an (n, 4) array ``x0, y0, x1, y1``, e.g. ``arena.wall_array()``) is given, no wall
+    crosses the straight line between them (so cells on either side of a maze wall are not
+    neighbours). Default radius: 1.5 × the median nearest-neighbour distance between locations.
     """
     loc = check_finite("locations", locations)
     if loc.ndim != 2 or loc.shape[1] != 2:
         raise ValueError(f"locations must be (L, 2), got {loc.shape}")
+    L = loc.shape[0]
     d = np.linalg.norm(loc[:, None, :] - loc[None, :, :], axis=-1)
     if radius is None:
-        if loc.shape[0] < 2:
-            return np.ones((loc.shape[0],) * 2, bool)
-        nn = np.sort(d, axis=1)[:, 1]
-        radius = 1.5 * float(np.median(nn))
-    return d <= radius
+        if L < 2:
+            return np.ones((L, L), bool)
+        radius = 1.5 * float(np.median(np.sort(d, axis=1)[:, 1]))
+    nb = d <= radius
+    if walls is not None and len(walls):
+        w = check_finite("walls", walls)
+        i, j = np.nonzero(np.triu(nb, 1))
+        blocked = _segments_cross(loc[i], loc[j], w)
+        nb[i[blocked], j[blocked]] = False
+        nb[j[blocked], i[blocked]] = False
+    return nb
 
 
 # ---------------------------------------------------------------------------- localization

@@ -229,21 +229,30 @@ class RCSFAICA:
         return (S, Y) if return_sfa else S
 
     # ------------------------------------------------------------------ offline
-    def transform(self, U: np.ndarray, *, return_sfa: bool = False):
+    def transform(self, U: np.ndarray, *, return_sfa: bool = False, upsample: bool = True):
         """Place-cell activities ``(T, n_ica)`` for a recording ``U`` (T, n_inputs), run from a
         zero reservoir state (the online state is untouched). With ``return_sfa`` also the SFA
-        outputs ``(T, n_sfa)``. With down-sampling, outputs are held between updates."""
+        outputs ``(T, n_sfa)``. With down-sampling, outputs are held between updates, as
+        :meth:`step` gives them; ``upsample=False`` returns one row per reservoir update instead
+        (taken at the ticks :meth:`sample_ticks` names)."""
         self._check_fitted()
         U = self._check_U(U)
         X = self.features(U)
         S, Y = self._readout(X, return_sfa=True)
         f = int(self.params.downsample)
-        if f > 1:
+        if f > 1 and upsample:
             T = U.shape[0]
             S = hold(S, T, f, self._y_init)
             y0 = self.sfa_.transform(np.zeros((1, X.shape[1])))[0]
             Y = hold(Y, T, f, y0)
         return (S, Y) if return_sfa else S
+
+    def sample_ticks(self, T: int) -> tuple[np.ndarray, float]:
+        """Ticks of the reservoir updates for a recording of ``T`` ticks, and the delay (in
+        ticks) of the anti-aliasing filter: update ``k`` reflects the input around tick
+        ``ticks[k] - delay``. Without down-sampling: ``(arange(T), 0)``."""
+        dec = self._decimator()
+        return dec.sample_ticks(T), float(dec.delay) if dec.factor > 1 else 0.0
 
     def fit_transform(self, U: np.ndarray, **kw: Any):
         return self.fit(U).transform(U, **kw)

@@ -43,7 +43,15 @@ class Decimator:
         self.taps = antialias_taps(self.factor, numtaps)
         # applied to a window ordered oldest -> newest
         self._rev = self.taps[::-1].copy()
+        #: group delay of the low-pass in input ticks: down-sampled sample ``k`` represents the
+        #: input around tick ``sample_ticks()[k] - delay``
+        self.delay = (self.taps.size - 1) / 2
         self.reset()
+
+    def sample_ticks(self, T: int) -> np.ndarray:
+        """Input ticks at which the down-sampled samples are taken (``factor-1, 2·factor-1,
+        ...`` below ``T``)."""
+        return np.arange(T // self.factor) * self.factor + self.factor - 1
 
     def reset(self) -> None:
         """Forget the online history (zeros, as the offline filter assumes)."""

@@ -19,6 +19,9 @@ def test_neighbors():
     _, _, loc = _track()
     nb = M.location_neighbors(loc)
     assert nb[0, 1] and nb[3, 2] and not nb[0, 2] and nb[4, 4]
+    wall = np.array([[15.0, -5.0, 15.0, 5.0]])  # between locations 1 and 2
+    nbw = M.location_neighbors(loc, walls=wall)
+    assert nbw[0, 1] and not nbw[1, 2] and not nbw[2, 1] and nbw[2, 3]
 
 
 def test_localized_units_and_aliasing():

@@ -1,0 +1,255 @@
+"""ICANN09 reproduction: ~60 place cells from 17 distance rays in a big maze (RC-SFA-ICA).
+
+The 17-ray robot explores ``maze_e1()`` (8 × 8 cells of 40 cm, 64 labelled locations) for
+350,000 ticks; inputs are down-sampled by 50 with a causal anti-aliasing filter; an RC-SFA-ICA
+model (400 neurons, leak 0.6, ρ 0.9, W_in ±0.2 with p = 0.15, 70 SFA / 70 ICA units) is fitted
+on the first 5/6 without labels and analysed on the last 1/6:
+
+* ``localized_units`` — ICANN09's count: units that respond ≥ 4.5 (training s.d.) and code one
+  location (≥ half of their supra-threshold samples at one location or a neighbour of it);
+* ``location_decoding_accuracy_test`` — the winning unit's location (unit → location learned on
+  the training part), exact and within one maze step (neighbours = adjacent cells with no wall
+  between them).
+
+Analysis runs at the down-sampled rate; sample ``k`` is labelled with the robot's location at
+the centre of the anti-aliasing window (``tick - delay``), as an offline resampler (ICANN09 used
+Matlab's zero-phase ``resample``) would align it. ``..._online`` numbers score the held outputs
+against the location at the current tick, i.e. what the closed-loop agent sees, filter lag
+included.
+
+Exploration: the default wall follower never switches side (``--rho 0``), so the robot tours the
+whole perfect maze again and again, like ICANN09's exploring controller; random side switches
+(``--rho 0.008``) leave parts of the maze unvisited for long stretches.
+
+Ablation (ICANN09 §4): the same run without the reservoir, quadratic SFA on the 17 inputs.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+from typing import Any
+
+import numpy as np
+
+from hippo.perception import RCSFAICA, ICAConvergenceWarning
+from hippo.perception import metrics as M
+from hippo.progress import Progress
+from hippo.scenarios._common import prepare_out, write_metrics
+from hippo.sim import arenas
+from hippo.sim.record import record
+
+TARGETS = {"localized_units": 62, "location_decoding_accuracy_test": 0.80}
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--ticks", type=int, default=350_000, help="recorded control ticks")
+    parser.add_argument("--rho", type=float, default=0.0,
+                        help="wall-side switch probability (default %(default)s: a full tour)")
+    parser.add_argument("--downsample", type=int, default=50, help="input down-sampling factor")
+    parser.add_argument("--neurons", type=int, default=400, help="reservoir size")
+    parser.add_argument("--units", type=int, default=70, help="SFA and ICA units")
+    parser.add_argument("--leak", type=float, default=0.6, help="reservoir leak rate")
+    parser.add_argument("--seeds", type=int, default=1,
+                        help="reservoirs to repeat over (seeds seed, seed+1, ...)")
+    parser.add_argument("--ica-restarts", type=int, default=3)
+    parser.add_argument("--ica-score", default="kurtosis",
+                        choices=["kurtosis", "sparseness", "slowness"])
+    parser.add_argument("--sfa-cutoff", default="1e-8",
+                        help="relative whitening cutoff, or 'auto' (default: %(default)s)")
+    parser.add_argument("--threshold", type=float, default=M.ICANN09_THRESHOLD,
+                        help="localization threshold in training s.d. (ICANN09: 4.5)")
+    parser.add_argument("--ablation", type=int, default=1, choices=[0, 1],
+                        help="also fit the no-reservoir, quadratic-SFA ablation")
+    parser.add_argument("--figures", type=int, default=1, choices=[0, 1], help="write PNGs")
+
+
+def _cutoff(text: str) -> float | str:
+    return text if text == "auto" else float(text)
+
+
+def _analyse(model: RCSFAICA, U: np.ndarray, labels: np.ndarray, n_train: int,
+             nb: np.ndarray, n_loc: int, threshold: float) -> dict[str, Any]:
+    T = len(U)
+    Yd, Ysd = model.transform(U, return_sfa=True, upsample=False)
+    ticks, delay = model.sample_ticks(T)
+    aligned = np.clip(np.round(ticks - delay).astype(int), 0, T - 1)
+    lab = labels[aligned].astype(int)
+    k_tr = int(np.searchsorted(ticks, n_train))
+    tr, te = slice(0, k_tr), slice(k_tr, len(ticks))
+    loc_te = M.localized_units(Yd[te], lab[te], nb, threshold=threshold)
+    loc_tr = M.localized_units(Yd[tr], lab[tr], nb, threshold=threshold)
+    mapping = M.fit_winner_decoder(Yd[tr], lab[tr], n_loc)
+    exact, near = M.decoding_accuracy(Yd[te], lab[te], mapping, nb)
+    exact_tr, near_tr = M.decoding_accuracy(Yd[tr], lab[tr], mapping, nb)
+    # what the closed loop sees: held outputs against the location at the current tick
+    held_idx = (np.arange(T) + 1) // model.params.downsample - 1
+    ok = held_idx >= 0
+    pred_online = np.full(T, -1)
+    pred_online[ok] = mapping[np.argmax(Yd[np.minimum(held_idx[ok], len(Yd) - 1)], axis=1)]
+    te_ticks = np.arange(n_train, T)
+    on_exact = float(np.mean(pred_online[te_ticks] == labels[te_ticks]))
+    on_near = float(np.mean(nb[np.maximum(pred_online[te_ticks], 0), labels[te_ticks]]
+                            & (pred_online[te_ticks] >= 0)))
+    return {
+        "localized_units": loc_te.count,
+        "localized_units_train": loc_tr.count,
+        "units_peak_over_threshold": int(np.sum(loc_te.peak >= threshold)),
+        "location_decoding_accuracy_test": exact,
+        "location_decoding_within_one_step_test": near,
+        "location_decoding_accuracy_train": exact_tr,
+        "location_decoding_within_one_step_train": near_tr,
+        "location_decoding_accuracy_test_online": on_exact,
+        "location_decoding_within_one_step_test_online": on_near,
+        "locations_coded": int(np.unique(loc_te.preferred[loc_te.localized]).size),
+        "sfa_whitened_dims": int(model.sfa_.n_whitened_),
+        "sfa_cutoff": float(model.sfa_.cutoff_),
+        "ica_converged": bool(model.ica_.converged_),
+        "ica_iterations": int(model.ica_.n_iter_),
+        "_Yd": Yd, "_Ysd": Ysd, "_lab": lab, "_ticks": ticks, "_aligned": aligned,
+        "_k_tr": k_tr, "_loc": loc_te,
+    }
+
+
+def _stats(values: list[float]) -> dict[str, Any]:
+    v = np.asarray(values, dtype=float)
+    f = v[np.isfinite(v)]
+    return {"mean": float(f.mean()) if f.size else float("nan"),
+            "sd": float(f.std(ddof=1)) if f.size > 1 else 0.0, "per_seed": v.tolist()}
+
+
+def run(args: argparse.Namespace) -> dict:
+    out = prepare_out(args.out)
+    quick = bool(args.quick)
+    ticks = min(args.ticks, 60_000) if quick else args.ticks
+    neurons = min(args.neurons, 100) if quick else args.neurons
+    units = min(args.units, 20) if quick else args.units
+    restarts = 1 if quick else args.ica_restarts
+    f = args.downsample
+    arena = arenas.maze_e1()
+    n_loc = len(arena.locations)
+    nb = M.location_neighbors(arena.locations, walls=arena.wall_array())
+    t0 = time.perf_counter()
+    rec = record(arena, ticks, seed=args.seed, rho=args.rho, sensors="ray17", desc="maze")
+    t_rec = time.perf_counter() - t0
+    U = rec.sensors
+    n_train = (ticks * 5 // 6) // f * f
+    labels = rec.label.astype(int)
+
+    common = dict(n_inputs=U.shape[1], downsample=f, n_sfa=units, n_ica=units,
+                  ica_restarts=restarts, ica_score=args.ica_score,
+                  sfa_cutoff=_cutoff(args.sfa_cutoff))
+    variants: dict[str, list[dict[str, Any]]] = {"rc_sfa_ica": [], "no_reservoir_quadratic": []}
+    keep: dict[str, dict[str, Any]] = {}
+    fit_s: dict[str, list[float]] = {k: [] for k in variants}
+    jobs = [("rc_sfa_ica", i) for i in range(args.seeds)]
+    if args.ablation:
+        jobs.append(("no_reservoir_quadratic", 0))  # deterministic up to the ICA seed
+    with Progress(len(jobs), "maze fits") as bar:
+        for name, i in jobs:
+            if name == "rc_sfa_ica":
+                model = RCSFAICA.icann09(n_reservoir=neurons, leak=args.leak,
+                                         seed=args.seed + i, **common)
+            else:
+                model = RCSFAICA.icann09(use_reservoir=False, sfa_expansion="quadratic",
+                                         seed=args.seed + i, **common)
+            t1 = time.perf_counter()
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ICAConvergenceWarning)
+                model.fit(U[:n_train])
+            fit_s[name].append(time.perf_counter() - t1)
+            res = _analyse(model, U, labels, n_train, nb, n_loc, args.threshold)
+            if name not in keep:
+                keep[name] = res
+                if name == "rc_sfa_ica":
+                    model.save(out / "place_cells.npz")
+            variants[name].append({k: v for k, v in res.items() if not k.startswith("_")})
+            bar.update()
+
+    def summary(name: str) -> dict[str, Any]:
+        rows = variants[name]
+        return {k: _stats([r[k] for r in rows]) for k in rows[0]
+                if isinstance(rows[0][k], int | float) and not isinstance(rows[0][k], bool)}
+
+    main = summary("rc_sfa_ica")
+    metrics: dict[str, Any] = {
+        "scenario": "maze", "paper": "ICANN09", "quick": quick, "seed": args.seed,
+        "ticks": ticks, "train_ticks": n_train, "test_ticks": ticks - n_train,
+        "downsample": f, "samples": ticks // f, "neurons": neurons, "units": units,
+        "leak": args.leak, "rho": args.rho, "ica_restarts": restarts,
+        "ica_score": args.ica_score, "threshold": args.threshold,
+        "reservoir_seeds": [args.seed + i for i in range(args.seeds)],
+        "locations_visited_train": int(np.unique(labels[:n_train]).size),
+        "locations_visited_test": int(np.unique(labels[n_train:]).size),
+        "cm_per_tick": float(np.mean(np.hypot(np.diff(rec.x), np.diff(rec.y)))),
+        "localized_units": main["localized_units"]["mean"],
+        "localized_units_sd": main["localized_units"]["sd"],
+        "location_decoding_accuracy_test": main["location_decoding_accuracy_test"]["mean"],
+        "location_decoding_accuracy_test_sd": main["location_decoding_accuracy_test"]["sd"],
+        "location_decoding_within_one_step_test":
+            main["location_decoding_within_one_step_test"]["mean"],
+        "location_decoding_within_one_step_test_sd":
+            main["location_decoding_within_one_step_test"]["sd"],
+        "rc_sfa_ica": main,
+        "runs": variants,
+        "targets": TARGETS,
+        "timing_s": {"record": t_rec, **{f"fit_{k}": v for k, v in fit_s.items()}},
+    }
+    if args.ablation:
+        abl = summary("no_reservoir_quadratic")
+        metrics["ablation_no_reservoir"] = abl
+        metrics["ablation_localized_units"] = abl["localized_units"]["mean"]
+        metrics["ablation_location_decoding_accuracy_test"] = \
+            abl["location_decoding_accuracy_test"]["mean"]
+        metrics["ablation_location_decoding_within_one_step_test"] = \
+            abl["location_decoding_within_one_step_test"]["mean"]
+    k = keep["rc_sfa_ica"]
+    arrays = dict(t=rec.t, x=rec.x, y=rec.y, label=rec.label, n_train=n_train,
+                  sample_ticks=k["_ticks"], aligned_ticks=k["_aligned"], Y=k["_Yd"],
+                  Ysfa=k["_Ysd"])
+    if "no_reservoir_quadratic" in keep:
+        arrays["Y_ablation"] = keep["no_reservoir_quadratic"]["_Yd"]
+    np.savez_compressed(out / "run.npz", **arrays)
+    if args.figures:
+        _figures(out, arena, rec, keep, args.threshold, n_loc)
+    write_metrics(out, metrics)
+    return metrics
+
+
+def _figures(out, arena, rec, keep, threshold: float, n_loc: int) -> None:
+    import matplotlib.pyplot as plt
+
+    from hippo.plots.perception import (
+        plot_activation_map,
+        plot_sfa_units,
+        plot_units_over_arena,
+    )
+
+    for name, tag in (("rc_sfa_ica", ""), ("no_reservoir_quadratic", "_ablation")):
+        if name not in keep:
+            continue
+        k = keep[name]
+        te = slice(k["_k_tr"], len(k["_ticks"]))
+        Yte, lab = k["_Yd"][te], k["_lab"][te]
+        order = M.spatial_order(Yte, lab, n_loc, threshold=threshold)
+        title = ("RC-SFA-ICA" if not tag else "no reservoir, quadratic SFA") + \
+            f": {k['localized_units']} localized units, decoding " \
+            f"{k['location_decoding_accuracy_test']:.2f} exact / " \
+            f"{k['location_decoding_within_one_step_test']:.2f} within one step (test)"
+        figs = {f"fig3_activation_map{tag}.png":
+                plot_activation_map(k["_aligned"][te], lab, Yte, order, threshold=threshold,
+                                    n_locations=n_loc, title=title)}
+        xy = np.column_stack([rec.x, rec.y])[k["_aligned"]]
+        fields, _, _, _ = M.place_fields_grid(xy[te], Yte, bins=32,
+                                                extent=(0, arena.width, 0, arena.height))
+        figs[f"place_fields{tag}.png"] = plot_units_over_arena(
+            arena, fields, (0, arena.width, 0, arena.height), units=order, title=title)
+        if not tag:
+            n_sfa = k["_Ysd"].shape[1]
+            figs["fig2a_sfa_units.png"] = plot_sfa_units(
+                arena, xy[te], lab, k["_Ysd"][te], [0, min(11, n_sfa - 1), min(23, n_sfa - 1)],
+                t=k["_aligned"][te])
+        for fname, fig in figs.items():
+            fig.savefig(out / fname, dpi=110)
+            plt.close(fig)

@@ -1,0 +1,22 @@
+"""`hippo run maze --quick`: runs end to end, writes its files, sane metric values."""
+
+import json
+
+from hippo.cli import run_scenario
+
+
+def test_maze_quick(tmp_path):
+    out = tmp_path / "maze"
+    m = run_scenario("maze", ["--quick", "--out", str(out)])
+    for name in ("metrics.json", "run.npz", "place_cells.npz", "fig3_activation_map.png",
+                 "fig3_activation_map_ablation.png", "place_fields.png", "fig2a_sfa_units.png"):
+        assert (out / name).exists(), name
+    saved = json.loads((out / "metrics.json").read_text())
+    for key in ("localized_units", "location_decoding_accuracy_test",
+                "location_decoding_within_one_step_test", "ablation_localized_units",
+                "ablation_location_decoding_accuracy_test"):
+        assert key in m and key in saved
+    assert 0 <= m["localized_units"] <= m["units"]
+    assert 0.0 <= m["location_decoding_accuracy_test"] <= m[
+        "location_decoding_within_one_step_test"] <= 1.0
+    assert m["location_decoding_within_one_step_test"] > 1 / 64  # better than chance
