@@ -90,6 +90,11 @@ class StateLayerParams:
     recruit_threshold: ``StateEvent.novel`` is True when no place activity reaches this
         (default 0.3): the place cell learner may recruit a new cell (HIREL learns place cells
         online above a minimum activity threshold).
+    events: which event kinds are states (default all of ``EVENT_KINDS``). Without
+        ``"moving"``, the robot resuming its movement hands the win from ``still@s`` straight
+        back to its context ``s`` (the wait transition is then ``still@s -> s``).
+    priority: order of the event kinds when several start at one tick (default
+        ``("sound", "colour", "still", "moving")``).
     conjunctive: event kinds bound to the current context (default ``("still", "moving")``).
     transient: event kinds whose activity falls to 0 ``transient_time`` after onset
         (default ``("moving",)``, ``transient_time`` 1.0 s).
@@ -102,6 +107,8 @@ class StateLayerParams:
     norm_tau: float = 300.0
     smoothing: float = 0.4
     recruit_threshold: float = 0.3
+    events: tuple[str, ...] = EVENT_KINDS
+    priority: tuple[str, ...] = EVENT_KINDS
     conjunctive: tuple[str, ...] = ("still", "moving")
     transient: tuple[str, ...] = ("moving",)
     transient_time: float = 1.0
@@ -116,7 +123,9 @@ class StateLayerParams:
         check_positive("norm_tau", self.norm_tau)
         check_positive("smoothing", self.smoothing, allow_zero=True)
         check_range("recruit_threshold", self.recruit_threshold, 0.0, 1.0)
-        for name in ("conjunctive", "transient"):
+        if sorted(self.priority) != sorted(EVENT_KINDS):
+            raise ValueError(f"priority must order all of {EVENT_KINDS}, got {self.priority}")
+        for name in ("events", "conjunctive", "transient"):
             bad = [k for k in getattr(self, name) if k not in EVENT_KINDS]
             if bad:
                 raise ValueError(f"{name} lists unknown event kind(s) {bad}; "
@@ -358,29 +367,37 @@ class StateLayer:
             onsets.append("sound")
         if col is not None and col != self._prev_colour:
             onsets.append("colour")
+        resumed = False
         if self._prev_moving is not None and mov is not None and mov != self._prev_moving:
             onsets.append("moving" if mov else "still")
+            resumed = mov
         self._prev_sound, self._prev_colour, self._prev_moving = snd, col, mov
+        onsets = [k for k in onsets if k in p.events]
 
         new: int | None = None
         if self.winner is None:  # first tick: the strongest input wins outright
-            if snd:
+            proprio = None if mov is None else ("moving" if mov else "still")
+            if snd and "sound" in p.events:
                 new = self._event_state("sound")
-            elif col is not None:
+            elif col is not None and "colour" in p.events:
                 new = self._register(StateKey("colour", col, None))
             elif pa.size:
                 new = int(self._place_ids[int(np.argmax(pa))])
-            elif mov is not None:
-                new = self._event_state("moving" if mov else "still")
+            elif proprio in p.events:
+                new = self._event_state(proprio)  # type: ignore[arg-type]
             else:
                 raise ValueError("nothing to compete: give place activities, a floor colour, "
                                  "the sound flag or the moving flag")
         elif onsets:
-            kind = min(onsets, key=EVENT_KINDS.index)
+            kind = min(onsets, key=p.priority.index)
             new = (self._register(StateKey("colour", col, None)) if kind == "colour"
                    else self._event_state(kind))
             if new == self.winner:
                 new = None
+        elif resumed and "moving" not in p.events:  # leaving still@s: back to s at once
+            k = self._keys[self.winner]
+            if k.kind == "still" and k.context is not None:
+                new = k.context
         if new is None and self.winner is not None and pa.size:
             wk = self._keys[self.winner]
             w_act = (float(pa[wk.index]) if wk.kind == "place"

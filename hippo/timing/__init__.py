@@ -7,6 +7,8 @@
   learned delays and the ``delay_over`` flag the agent uses to end a wait.
 - :class:`Satisfaction` (``satisfaction.py``): HIREL eq. 4-5.
 - :class:`NonOccurrence` (``non_occurrence.py``): a predicted event is overdue.
+- ``trials.py``: symbolic timed trials without a robot (``run_trial``, ``reproduce``), for
+  demos, benchmarks and tests.
 
 One control tick (dt = 0.2 s)::
 

@@ -150,3 +150,18 @@ def test_bad_input_is_named():
         layer.recruit("smell")
     with pytest.raises(ValueError, match="margin"):
         StateLayerParams(margin=2.0)
+
+
+def test_without_a_moving_state_resuming_returns_to_the_context():
+    layer = StateLayer(StateLayerParams(events=("sound", "colour", "still"),
+                                        priority=("sound", "still", "colour", "moving")))
+    place = np.array([3.0, 0.0])
+    layer.step(place, moving=True, dt=DT)
+    still = layer.step(place, moving=False, dt=DT).winner
+    ev = layer.step(place, moving=True, dt=DT)  # resumes: still@place 0 -> place 0 at once
+    assert ev.changed and ev.previous == still and layer.describe(ev.winner) == "place 0"
+    # priority: still before colour when both start at one tick
+    ev = layer.step(place, colour=2, moving=False, dt=DT)
+    assert layer.describe(ev.winner) == "still@place 0"
+    with pytest.raises(ValueError, match="priority"):
+        StateLayerParams(priority=("sound",))

@@ -13,8 +13,8 @@ def test_omitted_event_fires_after_the_delay_and_not_long_after(delay):
     for _ in range(4):
         trial(timing, cells, 0, 1, delay, rng=rng, nonocc=nonocc)
     ext = trial(timing, cells, 0, 1, None, rng=rng, nonocc=nonocc, t_max=2 * delay)
-    assert len(ext["fired"]) == 1  # fires once, then stays latched
-    t_fire = ext["fired"][0]
+    assert len(ext.fired) == 1  # fires once, then stays latched
+    t_fire = ext.fired[0]
     p = nonocc.params
     tolerance = max(p.rel_tolerance * delay, p.abs_tolerance)
     assert delay < t_fire <= delay + tolerance + 2 * DT
@@ -44,15 +44,15 @@ def test_on_time_events_never_fire_over_many_trials():
     fired = []
     for delay in rng.permutation(np.repeat(list(pairs), 10)):
         a, b = pairs[delay]  # jittered ticks: the event comes at the tick nearest the delay
-        fired += trial(timing, cells, a, b, delay, rng=rng, nonocc=nonocc)["fired"]
+        fired += trial(timing, cells, a, b, delay, rng=rng, nonocc=nonocc).fired
     for delay in rng.permutation(np.repeat(list(pairs), 6)):
         a, b = pairs[delay]  # the agent's own reproductions (patrol), learned again
         fired += trial(timing, cells, a, b, None, rng=rng, nonocc=nonocc, self_end=True,
-                       t_max=3 * delay)["fired"]
+                       t_max=3 * delay).fired
     assert fired == []
     # ... while an omission among them is caught
     ext = trial(timing, cells, 2, 3, None, rng=rng, nonocc=nonocc, t_max=10.0)
-    assert len(ext["fired"]) == 1
+    assert len(ext.fired) == 1
 
 
 def test_hirel_rule_on_plain_predictions():

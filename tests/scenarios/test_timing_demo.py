@@ -1,0 +1,30 @@
+"""`hippo run timing-demo --quick`: figures, metrics and arrays from the whole event pipeline."""
+
+import json
+
+import numpy as np
+
+from hippo.cli import run_scenario
+from hippo.io import load_npz
+
+
+def test_timing_demo_quick(tmp_path):
+    out = tmp_path / "timing"
+    metrics = run_scenario("timing-demo", ["--quick", "--out", str(out), "--seed", "1"])
+    for name in ("fig6_timing.png", "reproduction.png", "metrics.json", "run.npz"):
+        assert (out / name).stat().st_size > 0
+    assert json.loads((out / "metrics.json").read_text())["delay_s"] == 7.0
+    # the place-preference chain was learned through the state layer: still@goal -> sound
+    assert metrics["reward_transition_learned"]
+    assert abs(metrics["reward_learned_delay_s"] - 7.0) < 0.2
+    assert "still@colour 2 -> sound" in metrics["transitions_learned_s"]
+    # rewarded trial: the prediction peaks before the sound, no non-occurrence
+    assert 6.0 < metrics["rewarded_prediction_peak_s"] <= metrics["rewarded_sound_s"]
+    assert not metrics["rewarded_non_occurrence"]
+    # extinction: the non-occurrence neuron fires after the delay, within 2 s
+    assert 0.0 < metrics["extinction_resume_after_delay_s"] < 2.0
+    for d, rep in metrics["reproduction"].items():
+        assert abs(rep["mean_error_pct"]) < 3.0, d
+    arrays = load_npz(out / "run.npz", required=["rewarded_prediction", "delays_s"])
+    assert np.array_equal(arrays["delays_s"], [2.0, 7.0, 20.0])
+    assert arrays["extinction_prediction"].max() > 0.5
