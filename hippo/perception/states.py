@@ -56,6 +56,7 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from hippo._checks import check_finite, check_positive, check_range
 
@@ -174,7 +175,15 @@ def _colour(value: object) -> int | None:
 
 
 class StateLayer:
-    """Winner-take-all over place, colour, sound and proprioceptive states (HIREL Fig. 1).
+    r"""Winner-take-all over place, colour, sound and proprioceptive states (HIREL Fig. 1).
+
+    With :math:`x_s(t) \in [0, 1]` the activities on the common scale and :math:`w` the
+    winner, a place :math:`c` takes over when
+
+    .. math:: x_c(s) > x_w(s) + \text{margin} \quad \forall s \in [t - \text{hold}, t],
+
+    and an event state :math:`e` takes over at once at the onset of its input
+    (:math:`u_e(t) = 1,\ u_e(t - dt) = 0`).
 
     The competition (see the module docstring) implements HIREL's "a winner-take-all (WTA)
     competition takes place between the state neurons. Any change in the winning state
@@ -344,8 +353,8 @@ class StateLayer:
         ctx = self._context if kind in self.params.conjunctive else None
         return self._register(StateKey(kind, None, ctx))
 
-    def step(self, place: object = None, *, colour: object = None, sound: object = False,
-             moving: object = None, dt: float) -> StateEvent:
+    def step(self, place: ArrayLike | None = None, *, colour: int | None = None,
+             sound: bool = False, moving: bool | None = None, dt: float) -> StateEvent:
         """One tick of the competition.
 
         place: place-cell activities (1-D, may grow between ticks; None = no place cells).

@@ -2,12 +2,13 @@
 
 Public API
 ----------
-- :class:`TransitionParams` — NLMS parameters, ``min_strength``, ``anticipation``.
+- :class:`TransitionParams` — NLMS parameters, ``min_strength``, ``anticipation``, ``latency``.
 - :class:`TransitionCells` — ``step(battery: BatteryState, dt) -> dict[(a, b), TransitionReadout]``
   (the transitions out of the current winner); ``reset(keep_weights=False)``.
   Queries: ``transitions`` (all keys), ``successors(a)``, ``prediction(key)``,
   ``learned_delay(key)``, ``strength(key)``, ``elapsed_fraction(key)``, ``delay_over(key)``,
-  ``weights(key)``, ``expected(a, dt)`` (prediction of every successor of ``a`` over time).
+  ``weights(key)``, ``expected(a, tau)`` (prediction of every successor of ``a`` over time),
+  ``elapsed`` (population readout of the time spent in the current winner, s).
 - :class:`TransitionReadout` — per transition and tick: ``prediction``, ``strength``,
   ``learned_delay`` (s), ``elapsed_fraction`` and the **delay-over** flag ``delay_over``.
 
@@ -31,8 +32,9 @@ Typical use by an agent::
     cells, nonocc = TransitionCells(timing), NonOccurrence()
     ev = layer.step(place=acts, colour=obs.floor, sound=obs.sound, moving=obs.moving, dt=0.2)
     readouts = cells.step(timing.step(ev.winner, 0.2), 0.2)
-    if readouts.get((still_here, moving_here)) and readouts[(still_here, moving_here)].delay_over:
-        ...                                   # patrol: the learned wait is over, move on
+    wait = readouts.get((still_here, moving_here))
+    if wait is not None and wait.delay_over:  # patrol: the learned wait is over, move on
+        ...
     for key in nonocc.step(readouts, 0.2):    # extinction: predicted event did not come
         ...                                   # inhibit the drive that chose this transition
 """
@@ -234,6 +236,8 @@ class TransitionCells:
             self.elapsed = math.nan
             return {}
         self.elapsed = self.timing.readout(activity)
+        if math.isnan(self.elapsed):  # a silent battery: longer than any cell can time
+            self.elapsed = math.inf
         preds = self._w[rows] @ activity
         out = {}
         lead = self.params.anticipation + self.params.latency

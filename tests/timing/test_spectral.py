@@ -4,6 +4,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from hippo.timing import SpectralParams, SpectralTiming
 
@@ -100,3 +102,10 @@ def test_bad_input_is_named(timing):
         SpectralParams(mu_min=10.0, mu_max=5.0)
     with pytest.raises(ValueError, match="weber"):
         SpectralParams(weber=0.0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(tau=st.floats(0.3, 90.0), gain=st.floats(1e-3, 1e3))
+def test_readout_of_any_scaled_battery_is_its_time(tau, gain):
+    timing = SpectralTiming()
+    assert timing.readout(gain * timing.tuning(tau)) == pytest.approx(tau, rel=2e-3)

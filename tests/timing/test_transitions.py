@@ -7,6 +7,7 @@ import pytest
 from timing_helpers import DT, make, trial
 
 from hippo.timing import BatteryState, SpectralTiming, TransitionCells, TransitionParams
+from hippo.timing.trials import reproduce
 
 DELAYS = (2.0, 7.0, 20.0, 45.0)
 
@@ -146,3 +147,14 @@ def test_reset_keeps_or_forgets_weights():
     assert np.array_equal(cells.weights((0, 1)), w) and cells.readouts == {}
     cells.reset()
     assert cells.transitions == []
+
+
+def test_same_seed_same_result_and_long_waits_stay_over():
+    a, b = reproduce(7.0, seed=3, loops=2), reproduce(7.0, seed=3, loops=2)
+    assert a.waits == b.waits and a.learned == b.learned
+    assert reproduce(7.0, seed=4, loops=2).waits != a.waits
+    timing, cells, _, _ = learned(2.0)
+    cells.step(timing.step(0, DT), DT)
+    for _ in range(5000):  # 1000 s: far beyond the battery, the delay stays over
+        ro = cells.step(timing.step(0, DT), DT)
+    assert ro[(0, 1)].delay_over and cells.elapsed == math.inf
