@@ -407,6 +407,12 @@ class StateLayer:
             k = self._keys[self.winner]
             if k.kind == "still" and k.context is not None:
                 new = k.context
+        elif (col is not None and self.winner is not None
+              and self._keys[self.winner].kind not in ("place", "colour")
+              and self._event_level(self.winner, snd, col, mov) == 0.0):
+            # an event state ended (the sound stopped, a transient faded) on coloured floor:
+            # the colour, still perceived, takes the win back at once (not a place by level)
+            new = self._register(StateKey("colour", col, None))
         if new is None and self.winner is not None and pa.size:
             wk = self._keys[self.winner]
             w_act = (float(pa[wk.index]) if wk.kind == "place"

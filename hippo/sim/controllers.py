@@ -129,7 +129,7 @@ class AvoidanceParams:
     """Braitenberg-style obstacle avoidance."""
 
     slow: float = 10.0   #: cm: obstacles closer than this ahead slow the robot and turn it
-    stop: float = 3.0    #: cm: closer than this ahead the robot stops forward motion
+    stop: float = 1.5    #: cm beyond the sensors' minimum range: boxed in, or no forward motion
     turn_gain: float = 1.6
 
 
@@ -147,26 +147,39 @@ class ObstacleAvoidance:
         self.params = params or AvoidanceParams()
         self.geom = _SensorGeometry(sensors, robot or RobotParams())
         self.speed = speed if speed is not None else self.geom.robot.speed_max
+        self._turn = 0.0
 
     def boxed_in(self, obs: Observation) -> bool:
-        """True when every forward-facing ray sees an obstacle closer than ``stop``."""
+        """True when every forward-facing ray (within ±100°) reads an obstacle within
+        ``range_min + stop`` cm (readings saturate at ``range_min``: closer reads the same)."""
         d = self.geom.distances(obs.ir)
         fwd = np.abs(self.geom.angles) <= np.deg2rad(100)
-        return bool(np.all(d[fwd] < self.params.stop + 1.0))
+        return bool(np.all(d[fwd] <= self.geom.model.range_min + self.params.stop))
 
     def modulate(self, v: float, omega: float, obs: Observation) -> tuple[float, float]:
+        """Blend a desired motion with turning away from what is ahead.
+
+        With ``front`` the nearest obstacle ahead, ``k = (slow − front) / (slow − stop_at)``
+        (clipped to [0, 1], ``stop_at = range_min + stop``) weighs the avoidance turn against the
+        desired one and slows the robot by ``1 − k``. The turn direction is kept while the
+        obstacle stays in view, so the robot does not dither between two equal escapes.
+        """
         p, g = self.params, self.geom
-        d = g.distances(obs.ir)
         if self.boxed_in(obs):
             return 0.0, 0.0
+        d = g.distances(obs.ir)
         fl = float(d[g.front_left].min()) if g.front_left.any() else math.inf
         fr = float(d[g.front_right].min()) if g.front_right.any() else math.inf
         front = min(fl, fr, float(d[g.front].min()) if g.front.any() else math.inf)
+        stop_at = g.model.range_min + p.stop
         if front < p.slow:
-            k = (p.slow - front) / p.slow
-            turn = 1.0 if fl > fr else -1.0
-            omega = (1 - k) * omega + k * turn * p.turn_gain
-            v = v * (1 - k) if front > p.stop else 0.0
+            if self._turn == 0.0:
+                self._turn = 1.0 if fl > fr else -1.0
+            k = min(1.0, max(0.0, (p.slow - front) / (p.slow - stop_at)))
+            omega = (1 - k) * omega + k * self._turn * p.turn_gain
+            v = v * (1 - k)
+        else:
+            self._turn = 0.0
         return v, omega
 
     def act(self, obs: Observation) -> tuple[float, float]:

@@ -165,3 +165,21 @@ def test_without_a_moving_state_resuming_returns_to_the_context():
     assert layer.describe(ev.winner) == "still@place 0"
     with pytest.raises(ValueError, match="priority"):
         StateLayerParams(priority=("sound",))
+
+
+def test_colour_takes_the_win_back_when_a_transient_event_ends_on_it():
+    layer = StateLayer(n_place=3)
+    acts = np.array([0.0, 3.0, 0.0])
+    layer.step(acts, colour=0, moving=True, dt=0.2)
+    colour = layer.step(acts, colour=1, moving=True, dt=0.2).winner
+    assert layer.key(colour).kind == "colour"
+    sound = layer.step(acts, colour=1, sound=True, moving=True, dt=0.2).winner
+    assert layer.key(sound).kind == "sound"
+    ev = layer.step(acts, colour=1, sound=False, moving=True, dt=0.2)
+    assert ev.changed and ev.winner == colour
+    for _ in range(10):  # a strong place cell does not displace the colour while it is on
+        assert layer.step(acts, colour=1, moving=True, dt=0.2).winner == colour
+    ev = layer.step(acts, colour=0, moving=True, dt=0.2)
+    for _ in range(6):
+        ev = layer.step(acts, colour=0, moving=True, dt=0.2)
+    assert layer.key(ev.winner) == ("place", 1, None)

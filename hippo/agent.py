@@ -1,0 +1,420 @@
+"""The closed loop: learned place cells drive HIREL's timed cognitive map.
+
+One :meth:`Agent.step` per control tick, in the order of ``DESIGN.md``::
+
+    PathIntegrator.step(odometry)     own pose estimate: headings for actions (never a place input)
+    place source .step(obs)           place-cell activities: learned RC-SFA-ICA (default) or
+                                      Gaussian fields on the true position (comparison only)
+    StateLayer.step(...)              WTA over places + floor colour + sound + proprioception
+    SpectralTiming.step(winner)       the new winner's battery restarts at each sensory event
+    TransitionCells.step(battery)     learn A->B with its delay; predict the next states and when
+    NonOccurrence.step(readouts)      a predicted event is overdue
+    TransitionGraph / Drives          add A->B with its action (heading and distance measured by
+                                      path integration between entering A and entering B, or
+                                      "wait" for a proprioceptive event); a reward links its drive
+                                      to the last transition
+    Planner.decide(state)             the outgoing transition with the highest drive activity
+    motor                             move along the heading with obstacle avoidance, stand still
+                                      (wait), or explore (SMC09's wall follower)
+
+Waiting (HIREL III). Stopping and resuming are proprioceptive events of the state layer:
+``still@C`` (stopped in context ``C``) and ``moving@C`` (moving again). A checkpoint wait is the
+transition ``still@C -> moving@C`` (action "wait", delay = the pause); the place-preference
+reward is ``still@goal -> sound``. While the robot waits on a transition whose next event is its
+own (``moving``), the wait ends when the transition cells' ``delay_over`` flag rises (the
+learned delay, population-decoded from the batteries); when the next event is external (the
+sound), it ends when the non-occurrence neuron fires. Either way the drive linked to the waited
+transition is inhibited (held at 0) until the robot reaches another place, and the robot moves
+on with the other choices of the place it stopped in.
+
+Stopping where it was taught. The transition ``C -> still@C`` also carries a delay (time from
+entering ``C`` to stopping); the robot keeps its previous motion until that delay is over and
+then stops, so a checkpoint wait starts where the teacher blocked the robot, not at the edge of
+the place field.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+import numpy as np
+
+from hippo._checks import check_finite, check_positive
+from hippo.cognitive_map import Action, DriveParams, Drives, Planner, PlannerParams, TransitionGraph
+from hippo.perception.states import StateLayer, StateLayerParams
+from hippo.sim.controllers import GoToHeading, ObstacleAvoidance, WallFollower, WallFollowerParams
+from hippo.sim.odometry import PathIntegrator
+from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
+from hippo.sim.world import Observation
+from hippo.timing import (
+    NonOccurrence,
+    NonOccurrenceParams,
+    SpectralParams,
+    SpectralTiming,
+    TransitionCells,
+    TransitionParams,
+)
+
+Transition = tuple[int, int]
+
+#: what the motor layer is doing
+MODES = ("explore", "move", "approach", "wait")
+
+
+class PlaceSource(Protocol):
+    """Anything that turns an observation into place-cell activities."""
+
+    kind: str
+    n_units: int
+
+    def step(self, obs: Observation) -> np.ndarray: ...
+
+    def reset(self) -> None: ...
+
+
+class LearnedPlaceCells:
+    """Place cells learned by RC-SFA-ICA from the robot's own distance sensors (the default).
+
+    Wraps a fitted :class:`~hippo.perception.place_cells.RCSFAICA`; ``step`` feeds it the sensor
+    readings only (never the pose or odometry).
+    """
+
+    kind = "learned"
+
+    def __init__(self, model: Any) -> None:
+        if getattr(model, "ica_", None) is None:
+            raise ValueError("LearnedPlaceCells needs a fitted RCSFAICA model")
+        self.model = model
+        self.n_units = int(model.params.n_ica)
+
+    def step(self, obs: Observation) -> np.ndarray:
+        return self.model.step(obs.ir)
+
+    def reset(self) -> None:
+        self.model.reset_state()
+
+
+class GroundTruthPlaceCells:
+    """Gaussian place fields on the true position — only to measure what perception costs.
+
+    ``a_k = exp(-|p - c_k|² / (2 σ²))`` with centres ``c_k`` (cm) and width ``sigma``.
+    """
+
+    kind = "ground-truth"
+
+    def __init__(self, centres: np.ndarray, sigma: float = 10.0) -> None:
+        self.centres = check_finite("centres", centres).reshape(-1, 2)
+        if len(self.centres) == 0:
+            raise ValueError("GroundTruthPlaceCells needs at least one centre")
+        self.sigma = check_positive("sigma", sigma)
+        self.n_units = len(self.centres)
+
+    def step(self, obs: Observation) -> np.ndarray:
+        d2 = np.sum((self.centres - np.asarray(obs.pose[:2])) ** 2, axis=1)
+        return np.exp(-d2 / (2 * self.sigma**2))
+
+    def reset(self) -> None:
+        pass
+
+
+@dataclass(frozen=True)
+class AgentParams:
+    """Parameters of the closed loop (dt and speed: the e-puck of SMC09).
+
+    still_turn: rad/s of rotation under which a robot that does not translate counts as still
+        (turning on the spot is movement for proprioception).
+    move_timeout: a move is abandoned (the robot explores) after this × its learned delay + 5 s.
+    explore_rho: side-switch probability of the exploring wall follower (0: a steady tour).
+    approach: keep moving after entering a place until the learned ``C -> still@C`` delay is over
+        before stopping (False: stop as soon as the stop is chosen).
+    proprio_ticks: proprioception is debounced: the robot becomes still (or moving) after this
+        many consecutive ticks of it, so a stall at a corner is not a stop.
+    settle_time: after being lifted the robot explores this long (s) before it trusts its
+        place state again (learned place cells need a few seconds to recover; SMC09 Fig. 7).
+    stall_time, unstick_time: a move that leaves the robot stalled for ``stall_time`` s (its
+        heading runs into a wall) hands over to the wall follower for ``unstick_time`` s.
+    """
+
+    dt: float = 0.2
+    speed: float = 5.08
+    still_turn: float = 0.15
+    move_timeout: float = 3.0
+    explore_rho: float = 0.0
+    approach: bool = True
+    proprio_ticks: int = 2
+    settle_time: float = 6.0
+    stall_time: float = 1.0
+    unstick_time: float = 4.0
+    states: StateLayerParams = field(default_factory=StateLayerParams)
+    spectral: SpectralParams = field(default_factory=SpectralParams)
+    transitions: TransitionParams = field(default_factory=TransitionParams)
+    non_occurrence: NonOccurrenceParams = field(default_factory=NonOccurrenceParams)
+    planner: PlannerParams = field(default_factory=lambda: PlannerParams(w=0.9, noise=0.01))
+
+    def __post_init__(self) -> None:
+        check_positive("dt", self.dt)
+        check_positive("speed", self.speed)
+        check_positive("still_turn", self.still_turn, allow_zero=True)
+        check_positive("move_timeout", self.move_timeout)
+        if self.proprio_ticks < 1:
+            raise ValueError(f"proprio_ticks must be >= 1, got {self.proprio_ticks}")
+        check_positive("settle_time", self.settle_time, allow_zero=True)
+        if not 0.0 <= self.explore_rho <= 1.0:
+            raise ValueError(f"explore_rho must lie in [0, 1], got {self.explore_rho}")
+
+
+class Agent:
+    """HIREL's architecture on any place-cell source; one :meth:`step` per control tick.
+
+    Parameters
+    ----------
+    places : a :class:`PlaceSource` (:class:`LearnedPlaceCells` in every scenario by default).
+    drives : drive name -> :class:`DriveParams`. The drive ``"sound"`` is satisfied by the
+        reward sound; others by :meth:`reward` (e.g. the teacher's end of a checkpoint block).
+    params : :class:`AgentParams`.
+    sensors, robot : the robot the motor layer drives.
+    seed : seeds the agent's own random choices (planner noise, exploration).
+    """
+
+    def __init__(self, places: PlaceSource, *, drives: Mapping[str, DriveParams] | None = None,
+                 params: AgentParams | None = None, sensors: str | SensorModel = "ir8",
+                 robot: RobotParams | None = None, seed: int = 0) -> None:
+        self.places = places
+        self.p = params or AgentParams()
+        self.robot = robot or RobotParams()
+        self.sensors = get_sensor_model(sensors)
+        self.rng = np.random.default_rng([seed, 7])
+        self.layer = StateLayer(self.p.states, n_place=places.n_units)
+        self.spectral = SpectralTiming(self.p.spectral)
+        self.cells = TransitionCells(self.spectral, self.p.transitions)
+        self.nonocc = NonOccurrence(self.p.non_occurrence)
+        self.graph = TransitionGraph()
+        self.drives = Drives(dict(drives if drives is not None else {"sound": DriveParams()}))
+        self.planner = Planner(self.p.planner, seed=seed)
+        self.explorer = WallFollower(WallFollowerParams(rho=self.p.explore_rho),
+                                     sensors=self.sensors, robot=self.robot,
+                                     rng=np.random.default_rng([seed, 8]))
+        self.steer = GoToHeading(sensors=self.sensors, robot=self.robot, speed=self.p.speed)
+        self.avoid = ObstacleAvoidance(sensors=self.sensors, robot=self.robot)
+        self.pi = PathIntegrator()
+        self.t = 0.0
+        self._moving = True
+        self._flip = 0
+        self._settle_until = -math.inf
+        self._stalled = 0
+        self._unstick_until = -math.inf
+        self._reset_episode()
+
+    # -- episode bookkeeping ------------------------------------------------------------------
+    def _reset_episode(self) -> None:
+        self.state: int | None = None
+        self.entered_at = self.t
+        self._entry_pose = self.pi.pose
+        self.current: Transition | None = None
+        self.current_since = self.t
+        self.mode = "explore"
+        self._heading: float | None = None      # heading of the last move (kept when lost)
+        self._waiting_on: Transition | None = None
+        self._inhibited: dict[str, int] = {}    # drive -> context state it was inhibited in
+        self._pending_rewards: list[str] = []
+        self.last_transition: Transition | None = None
+        self.non_occurrence: list[Transition] = []
+        self.readouts: dict = {}
+
+    def lifted(self) -> None:
+        """The robot was picked up and put down elsewhere (same heading): no transition spans
+        the jump, and the state competition starts afresh (the place cells keep their memory)."""
+        self.layer.reset(keep_states=True)
+        self.nonocc.reset()
+        for d in list(self._inhibited):
+            self.drives.release(d)
+        self._reset_episode()
+        self._settle_until = self.t + self.p.settle_time
+
+    def reward(self, drive: str) -> None:
+        """An external satisfaction of ``drive``: linked to the next transition performed."""
+        if drive not in self.drives:
+            raise KeyError(f"unknown drive {drive!r}; known: {', '.join(self.drives.names)}")
+        self._pending_rewards.append(drive)
+
+    def describe(self, state: int | None) -> str:
+        """Name of a state id (``place 3``, ``colour 1``, ``still@place 3``, ``sound``)."""
+        return "none" if state is None else self.layer.describe(state)
+
+    # -- the tick -----------------------------------------------------------------------------
+    def step(self, obs: Observation) -> tuple[float, float]:
+        """Perceive, learn, decide and act for one tick; returns wheel speeds (cm/s)."""
+        p = self.p
+        ir = check_finite("sensor readings", obs.ir)
+        if ir.shape != (self.sensors.n,):
+            raise ValueError(f"expected {self.sensors.n} sensor readings, got shape {ir.shape}")
+        self.t = float(obs.t)
+        self.pi.step(obs.odometry)
+        acts = self.places.step(obs)
+        turning = abs(float(obs.odometry[2])) > p.still_turn * p.dt
+        moving = bool(obs.moving or turning)
+        if moving != self._moving:
+            self._flip += 1
+            if self._flip >= p.proprio_ticks:
+                self._moving, self._flip = moving, 0
+        else:
+            self._flip = 0
+        ev = self.layer.step(acts, colour=obs.floor, sound=obs.sound, moving=self._moving,
+                             dt=p.dt)
+        battery = self.spectral.step(ev.winner, p.dt)
+        self.readouts = self.cells.step(battery, p.dt)  # learning never stops
+        self.non_occurrence = self.nonocc.step(self.readouts, p.dt)
+        if self.t < self._settle_until:
+            self.mode = "explore"
+            return self.explorer.act(obs)
+        if self.state is None:  # (re)start: take the winner as it is, no transition
+            self.state, self.entered_at, self._entry_pose = ev.winner, self.t, self.pi.pose
+            self._choose()
+        elif ev.changed:
+            self._on_event(ev.winner)
+        self._check_wait()
+        self.drives.step(p.dt)
+        return self._motor(obs)
+
+    def _on_event(self, new: int) -> None:
+        prev, t = self.state, self.t
+        kind = self.layer.key(new).kind
+        if kind == "moving" and (prev is None or self.layer.key(prev).kind != "still"):
+            prev = None  # "moving" without a stop before it (e.g. after being lifted): no event
+        if prev is not None:
+            delay = t - self.entered_at
+            x0, y0, _ = self._entry_pose
+            x1, y1, _ = self.pi.pose
+            wait = self.layer.key(new).kind in ("still", "sound") or \
+                self.layer.key(prev).kind == "still"
+            dist = math.hypot(x1 - x0, y1 - y0)
+            action = Action.wait() if wait or dist < 1e-6 else Action.move(
+                math.atan2(y1 - y0, x1 - x0), dist)
+            tr = self.graph.add_transition(prev, new, action, delay, time=t)
+            self.graph.observe_position(new, (x1, y1))
+            self.last_transition = tr
+            if self.layer.key(new).kind == "sound" and "sound" in self.drives:
+                self.drives.reward("sound", tr)
+            for d in self._pending_rewards:
+                self.drives.reward(d, tr)
+            self._pending_rewards.clear()
+        # drives inhibited by a finished wait are released once the robot reaches another place
+        if kind in ("place", "colour"):
+            for d, ctx in list(self._inhibited.items()):
+                if ctx != new:
+                    self.drives.release(d)
+                    del self._inhibited[d]
+        self.state = new
+        self.entered_at = t
+        self._entry_pose = self.pi.pose
+        if kind == "moving":
+            # resuming: keep the move chosen when the wait ended, else choose from the context
+            if self.mode != "move" or self.current is None:
+                ctx = self.layer.key(new).context
+                self._choose(ctx, exclude_wait=True)
+            return
+        self._waiting_on = None
+        self._choose()
+
+    def _choose(self, state: int | None = None, *, exclude_wait: bool = False) -> None:
+        """Pick the transition to execute from ``state`` (default: the current one)."""
+        s = self.state if state is None else state
+        keep_heading = self.mode in ("move", "approach") and self._heading is not None
+        self.current = None
+        if s is None or not self.graph.has_state(s):
+            self.mode = "move" if keep_heading else "explore"
+            self.current_since = self.t
+            return
+        out = self.graph.outgoing(s)
+        if exclude_wait:
+            out = [t for t in out if not self.graph.action(t).is_wait]
+        if not out:
+            self.mode = "move" if keep_heading else "explore"
+            return
+        choice = self.planner.decide(self.graph, self.drives, s, self.rng)
+        tr = choice.transition
+        if choice.explored:  # no drive: explore by moving, never by stopping
+            moves = [t for t in out if not self.graph.action(t).is_wait]
+            if not moves:
+                self.mode = "move" if keep_heading else "explore"
+                return
+            tr = moves[int(self.rng.integers(len(moves)))]
+        elif tr not in out:  # the planner's pick was a wait we must not take now
+            vals = [self._activity(t) for t in out]
+            tr = out[int(np.argmax(vals))] if max(vals) > 0 else \
+                out[int(self.rng.integers(len(out)))]
+        self.current, self.current_since = tr, self.t
+        action = self.graph.action(tr)
+        if not action.is_wait:
+            self.mode = "move"
+            self._heading = float(action.heading)  # type: ignore[arg-type]
+        elif self.layer.key(tr[1]).kind == "still" and self.p.approach and keep_heading:
+            self.mode = "approach"   # keep going until the learned time-to-stop is over
+        else:
+            self.mode = "wait"
+            self._waiting_on = tr
+
+    def _activity(self, tr: Transition) -> float:
+        act = self.planner.activity(self.graph, self.drives)
+        return float(act.values[act.index.pos[tr]])
+
+    def _check_wait(self) -> None:
+        if self.current is None:
+            return
+        ro = self.readouts.get(self.current)
+        if self.mode == "approach":
+            if ro is None or ro.delay_over or ro.strength < self.p.transitions.min_strength:
+                self.mode, self._waiting_on = "wait", self.current
+            return
+        if self.mode != "wait" or self._waiting_on is None:
+            return
+        a, b = self._waiting_on
+        own = self.layer.key(b).kind in ("moving", "place", "colour")
+        over = (ro is not None and ro.delay_over) if own else (a, b) in self.non_occurrence
+        if not over:
+            return
+        # the wait is over: inhibit the drives that chose it, then move on from the place
+        ctx = self.layer.key(a).context if self.layer.key(a).kind == "still" else a
+        for name in self.drives.names:
+            if (a, b) in self.drives.links(name) and name not in self._inhibited:
+                self.drives.inhibit(name)
+                self._inhibited[name] = ctx if ctx is not None else a
+        self._waiting_on = None
+        self.mode = "explore"
+        self._choose(ctx if ctx is not None else a, exclude_wait=True)
+
+    # -- motor --------------------------------------------------------------------------------
+    def _motor(self, obs: Observation) -> tuple[float, float]:
+        if self.avoid.boxed_in(obs) or self.mode == "wait":
+            return 0.0, 0.0
+        if self.mode in ("move", "approach") and self._heading is not None:
+            # a heading that runs into a wall leaves the robot stalled: wall-follow a while
+            self._stalled = self._stalled + 1 if obs.speed < 0.5 else 0
+            if self._stalled * self.p.dt >= self.p.stall_time:
+                self._unstick_until, self._stalled = self.t + self.p.unstick_time, 0
+            if self.t < self._unstick_until:
+                return self.explorer.act(obs)
+            delay = self.graph.delay(self.current) if self.current is not None else None
+            limit = self.p.move_timeout * float(delay or 5.0) + 5.0
+            if self.t - self.current_since <= limit:
+                return self.steer.act(obs, self.pi.heading, self._heading)
+            self.mode, self.current = "explore", None
+        return self.explorer.act(obs)
+
+    # -- introspection ------------------------------------------------------------------------
+    def snapshot(self) -> dict[str, Any]:
+        """The per-tick signals a figure needs."""
+        cur = self.current
+        ro = self.readouts.get(cur) if cur is not None else None
+        return {
+            "winner": -1 if self.state is None else self.state,
+            "mode": MODES.index(self.mode),
+            "transition_a": -1 if cur is None else cur[0],
+            "transition_b": -1 if cur is None else cur[1],
+            "prediction": 0.0 if ro is None else ro.prediction,
+            "non_occurrence": bool(self.non_occurrence),
+            "drives": [self.drives.level(n) for n in self.drives.names],
+        }

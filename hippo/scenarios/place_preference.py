@@ -1,0 +1,302 @@
+"""HIREL III-A place preference: go to the goal zone, wait for the sound, give up in extinction.
+
+Phases (each with a progress bar):
+
+1. **exploration** — the robot explores ``goal_arena()`` with SMC09's wall follower (HIREL: 40
+   min). Its own sensor stream fits the RC-SFA-ICA place cells (``--place-cells learned``, the
+   default) and is replayed through the agent, which learns the states, their timed transitions
+   and the cognitive map.
+2. **teaching** — the leash leads the robot into the goal zone and a block holds it there; after
+   ``--delay`` seconds in the zone and still, the sound comes (repeated ``--teach`` times).
+3. **rewarded trials** — from varied start places, with the "sound" drive active, the robot plans
+   to the goal, stops, waits; the experimenter plays the sound after ``--delay`` s still in the
+   zone; the drive is satisfied and the robot explores.
+4. **extinction trials** — the same without the sound: the non-occurrence signal inhibits the
+   drive and the robot resumes exploring.
+
+``run.npz`` holds per-tick ``t, x, y, heading, speed, zone, sound, winner, drives, mode,
+prediction, non_occurrence, phase, trial`` and the teacher's events.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from hippo.agent import Agent, AgentParams, GroundTruthPlaceCells, LearnedPlaceCells
+from hippo.cognitive_map import DriveParams, PlannerParams
+from hippo.io import save_npz
+from hippo.perception.place_cells import RCSFAICA
+from hippo.progress import Progress
+from hippo.scenarios._common import prepare_out, write_metrics
+from hippo.sim import WallFollower, WallFollowerParams, World, arenas
+from hippo.sim.arena import Arena
+
+PHASES = ("exploration", "teaching", "rewarded", "extinction")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--delay", type=float, default=7.0, help="reward delay in s (HIREL: 7)")
+    parser.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned")
+    parser.add_argument("--explore-min", type=float, default=40.0,
+                        help="exploration time in minutes (HIREL: 40)")
+    parser.add_argument("--teach", type=int, default=3, help="guided (leash + block) trials")
+    parser.add_argument("--trials", type=int, default=12, help="rewarded trials")
+    parser.add_argument("--extinction", type=int, default=4, help="extinction trials")
+    parser.add_argument("--units", type=int, default=24, help="learned place cells (ICA units)")
+    parser.add_argument("--trial-timeout", type=float, default=240.0, help="s per trial")
+
+
+@dataclass
+class Log:
+    """Per-tick arrays of the whole run."""
+
+    cols: dict[str, list] = field(default_factory=lambda: {k: [] for k in (
+        "t", "x", "y", "heading", "speed", "zone", "sound", "winner", "mode", "prediction",
+        "non_occurrence", "phase", "trial", "drives")})
+
+    def add(self, obs, agent: Agent | None, phase: int, trial: int) -> None:
+        c = self.cols
+        x, y, h = obs.pose
+        c["t"].append(obs.t)
+        c["x"].append(x)
+        c["y"].append(y)
+        c["heading"].append(h)
+        c["speed"].append(obs.speed)
+        c["zone"].append(obs.floor)
+        c["sound"].append(obs.sound)
+        c["phase"].append(phase)
+        c["trial"].append(trial)
+        if agent is None:
+            c["winner"].append(-1)
+            c["mode"].append(0)
+            c["prediction"].append(0.0)
+            c["non_occurrence"].append(False)
+            c["drives"].append([0.0])
+        else:
+            s = agent.snapshot()
+            for k in ("winner", "mode", "prediction", "non_occurrence", "drives"):
+                c[k].append(s[k])
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        return {k: np.asarray(v) for k, v in self.cols.items()}
+
+
+def explore(world: World, ticks: int, rho: float, seed: int, log: Log, desc: str) -> list:
+    """Drive the robot with the wall follower; return the observations."""
+    ctrl = WallFollower(WallFollowerParams(rho=rho), sensors=world.sensors, robot=world.robot,
+                        rng=np.random.default_rng([seed, 3]))
+    obs = world._observe(np.zeros(3), 0.0, False)
+    out = []
+    with Progress(ticks, desc) as bar:
+        for _ in range(ticks):
+            obs = world.step(ctrl.act(obs))
+            out.append(obs)
+            log.add(obs, None, 0, -1)
+            bar.update()
+    return out
+
+
+def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: int):
+    """The place-cell source: RC-SFA-ICA fitted on the exploration, or ground truth."""
+    if kind == "ground-truth":
+        return GroundTruthPlaceCells(arena.locations, sigma=8.0)
+    model = RCSFAICA(n_reservoir=400, leak=(0.05, 0.15), spectral_radius=0.99, n_sfa=units,
+                     n_ica=units, ica_restarts=3, seed=seed)
+    model.fit(sensors)
+    return LearnedPlaceCells(model)
+
+
+def run_agent(world: World, agent: Agent, obs, ticks: int, log: Log, phase: int, trial: int,
+              until=None, bar: Progress | None = None):
+    """Step the closed loop for up to ``ticks`` ticks (or until ``until(obs)`` is true)."""
+    for _ in range(ticks):
+        obs = world.step(agent.step(obs))
+        log.add(obs, agent, phase, trial)
+        if bar is not None:
+            bar.update()
+        if until is not None and until(obs):
+            break
+    return obs
+
+
+class Experimenter:
+    """Plays the sound once the robot has been still in the goal zone for ``delay`` s."""
+
+    def __init__(self, world: World, delay: float, colour: int = 1) -> None:
+        self.world, self.delay, self.colour = world, delay, colour
+        self.still_since: float | None = None
+        self.rewarding = True
+        self.sounded = False
+
+    def __call__(self, obs) -> bool:
+        still = obs.floor == self.colour and not obs.moving
+        if still and self.still_since is None:
+            self.still_since = obs.t
+        elif not still:
+            self.still_since = None
+        if (self.rewarding and not self.sounded and self.still_since is not None
+                and obs.t - self.still_since >= self.delay - 1e-9):
+            self.world.teacher.sound()
+            self.sounded = True
+        return False
+
+
+def run(args: argparse.Namespace) -> dict:
+    out = prepare_out(args.out)
+    seed = int(args.seed)
+    if args.delay <= 0 or not math.isfinite(args.delay):
+        raise SystemExit(f"--delay must be a positive number of seconds, got {args.delay}")
+    quick = bool(args.quick)
+    explore_min = 12.0 if quick else args.explore_min
+    n_teach = min(args.teach, 2) if quick else args.teach
+    n_trials = min(args.trials, 4) if quick else args.trials
+    n_ext = min(args.extinction, 2) if quick else args.extinction
+    units = min(args.units, 16) if quick else args.units
+    arena = arenas.goal_arena()
+    world = World(arena, sensors="ir8", seed=seed)
+    dt = world.dt
+    log = Log()
+    t0 = time.perf_counter()
+
+    # 1. exploration: place cells from the robot's own sensors, then the map
+    ticks = round(explore_min * 60 / dt)
+    explored = explore(world, ticks, 0.0, seed, log, "exploration")
+    places = make_places(args.place_cells, arena, np.array([o.ir for o in explored]), units, seed)
+    fit_s = time.perf_counter() - t0
+    drive = DriveParams(epsilon=0.02, learning_rate=0.5)
+    params = AgentParams(planner=PlannerParams(w=0.9, noise=0.01, exploration_threshold=0.3))
+    agent = Agent(places, drives={"sound": drive}, params=params, sensors=world.sensors,
+                  robot=world.robot, seed=seed)
+    with Progress(len(explored), "map learning") as bar:
+        for o in explored:
+            agent.step(o)
+            bar.update()
+    obs = explored[-1]
+
+    # 2. teaching: leash to the goal, block, sound after the delay
+    goal = arena.landmarks["goal"]
+    zone = arena.zones[0].rect
+    exp = Experimenter(world, args.delay)
+    with Progress(n_teach, "teaching") as bar:
+        for k in range(n_teach):
+            # start each guided trial from outside the zone, so entering it is an event
+            obs = run_agent(world, agent, obs, int(120 / dt), log, 1, k,
+                            until=lambda o: o.floor == 0)
+            _, path = arena.shortest_path(obs.pose[:2], goal)
+            world.teacher.lead(path)
+            exp.sounded, exp.still_since = False, None
+            obs = run_agent(world, agent, obs, 3000, log, 1, k,
+                            until=lambda o: not world.teacher.leading)
+            world.teacher.block(args.delay + 2.0)
+            obs = run_agent(world, agent, obs, int((args.delay + 2.0) / dt) + 5, log, 1, k,
+                            until=exp)
+            obs = run_agent(world, agent, obs, int(30 / dt), log, 1, k)  # explore again
+            bar.update()
+
+    # 3-4. rewarded and extinction trials from varied start places
+    starts = [arena.landmarks[f"start-{n}"] for n in ("south", "east", "north", "west")]
+    results = []
+    sound_id = None
+    n_total = n_trials + n_ext
+    with Progress(n_total, "trials") as bar:
+        for k in range(n_total):
+            rewarded = k < n_trials
+            phase = 2 if rewarded else 3
+            sx, sy = starts[k % len(starts)]
+            world.place_robot(sx, sy, obs.pose[2], event="trial_start")
+            agent.lifted()
+            agent.drives.set_level("sound", max(agent.drives.level("sound"), 0.6))
+            exp.rewarding, exp.sounded, exp.still_since = rewarded, False, None
+            obs = world.step((0.0, 0.0))
+            i0 = len(log.cols["t"])
+            shortest = arena.geodesic_distance((sx, sy), zone)
+            limit = int(args.trial_timeout / dt)
+            rec = {"rewarded": rewarded, "start": [sx, sy], "shortest_cm": shortest}
+
+            def done(o, rec=rec, rewarded=rewarded) -> bool:
+                exp(o)
+                if o.floor == 1 and "entered_t" not in rec:
+                    rec["entered_t"] = o.t
+                if exp.still_since is not None and "still_t" not in rec:
+                    rec["still_t"] = exp.still_since
+                if rewarded:
+                    return o.sound
+                # extinction: done when the robot moves on after having stood in the zone
+                return "still_t" in rec and ((o.moving and o.floor != 1) or
+                                             o.t - rec["still_t"] > 60.0)
+
+            obs = run_agent(world, agent, obs, limit, log, phase, k, until=done)
+            i1 = len(log.cols["t"])
+            xs = np.array(log.cols["x"][i0:i1])
+            ys = np.array(log.cols["y"][i0:i1])
+            ts = np.array(log.cols["t"][i0:i1])
+            if "entered_t" in rec:
+                m = ts <= rec["entered_t"]
+                rec["path_cm"] = float(np.sum(np.hypot(np.diff(xs[m]), np.diff(ys[m]))))
+            if rewarded:
+                rec["success"] = bool(exp.sounded)
+                if exp.sounded:
+                    rec["wait_s"] = float(obs.t - rec["still_t"])
+                    sound_id = agent.state
+            else:
+                moving = [i for i in range(i0, i1) if log.cols["t"][i] > rec.get("still_t", 1e9)
+                          and log.cols["speed"][i] > world.robot.moving_threshold]
+                if "still_t" in rec and moving:
+                    rec["resume_t"] = float(log.cols["t"][moving[0]])
+                    rec["still_s"] = rec["resume_t"] - rec["still_t"]
+            results.append(rec)
+            obs = run_agent(world, agent, obs, int(20 / dt), log, phase, k)
+            bar.update()
+
+    wall = time.perf_counter() - t0
+    learned_delay = _learned_reward_delay(agent, sound_id)
+    rew = [r for r in results if r["rewarded"]]
+    ext = [r for r in results if not r["rewarded"]]
+    ratios = [r["path_cm"] / r["shortest_cm"] for r in rew
+              if r.get("success") and "path_cm" in r and r["shortest_cm"] > 0]
+    metrics = {
+        "place_cells": args.place_cells, "seed": seed, "delay_s": args.delay,
+        "quick": quick, "explore_min": explore_min, "units": places.n_units,
+        "rewarded_trials": len(rew),
+        "rewarded_successes": int(sum(bool(r.get("success")) for r in rew)),
+        "waits_s": [r["wait_s"] for r in rew if "wait_s" in r],
+        "learned_delay_s": learned_delay,
+        "extinction_trials": len(ext),
+        "extinction_stops": int(sum("still_s" in r for r in ext)),
+        "extinction_still_s": [r["still_s"] for r in ext if "still_s" in r],
+        "extinction_resume_delays_s": [r["still_s"] - (learned_delay or args.delay)
+                                       for r in ext if "still_s" in r],
+        "path_length_ratio": float(np.median(ratios)) if ratios else None,
+        "path_length_ratios": ratios,
+        "states": agent.layer.n_states, "transitions": len(agent.graph),
+        "simulated_s": float(obs.t), "wall_s": wall, "fit_s": fit_s,
+        "realtime_factor": float(obs.t) / wall,
+        "trials": results,
+    }
+    arrays = log.arrays()
+    ev = world.events
+    save_npz(out / "run.npz", {**arrays, "drive_names": np.array(agent.drives.names),
+                               "event_t": np.array([e[0] for e in ev], float),
+                               "event_kind": np.array([e[1] for e in ev], dtype="<U16"),
+                               "event_detail": np.array([e[2] for e in ev], dtype="<U64")})
+    agent.graph.to_graphml(out / "map.graphml")
+    from hippo.plots.agent import plot_place_preference
+
+    plot_place_preference(out, arena, agent, arrays, results, args.delay)
+    write_metrics(out, metrics)
+    return metrics
+
+
+def _learned_reward_delay(agent: Agent, sound_id: int | None) -> float | None:
+    """The delay the transition cells learned for ``still@goal -> sound``."""
+    if sound_id is None:
+        return None
+    delays = [agent.cells.learned_delay(k) for k in agent.cells.transitions
+              if k[1] == sound_id and agent.layer.key(k[0]).kind == "still"]
+    delays = [d for d in delays if d == d]
+    return float(np.median(delays)) if delays else None
