@@ -103,3 +103,44 @@ def plot_place_preference(out: Path, arena: Arena, agent: Agent,
         plt.close(fig)
         paths.append(out / name)
     return paths
+
+
+def plot_waits_table(rows: Sequence[Mapping[str, Any]]) -> Figure:
+    """HIREL Table I as a figure: learned wait vs each reproduced wait, per checkpoint."""
+    fig, ax = plt.subplots(figsize=(6, 3.6), layout="constrained")
+    for k, r in enumerate(rows):
+        rep = r["reproduced_waits_s"]
+        ax.plot([k - 0.25, k + 0.25], [r["learned_wait_s"] or np.nan] * 2, "k-", lw=2,
+                label="learned" if k == 0 else None)
+        ax.plot(np.full(len(rep), k) + np.linspace(-0.15, 0.15, max(len(rep), 1))[:len(rep)],
+                rep, "o", color="tab:blue", label="reproduced" if k == 0 else None)
+        ax.plot(k, r["taught_block_s"], "r_", ms=20, label="teacher's block" if k == 0 else None)
+    ax.set_xticks(range(len(rows)), [r["checkpoint"] for r in rows])
+    ax.set_ylabel("wait (s)")
+    ax.legend(fontsize=8)
+    ax.set_title("checkpoint waits: learned vs reproduced")
+    return fig
+
+
+def plot_patrol(out: Path, arena: Arena, agent: Agent, arrays: Mapping[str, np.ndarray],
+                rows: Sequence[Mapping[str, Any]]) -> list[Path]:
+    """Write the patrol figures into ``out`` (HIREL Fig. 7a, 7b and Table I)."""
+    fig_b, ax = plt.subplots(figsize=(7, 5.5), layout="constrained")
+    draw_arena(arena, ax, locations=False)
+    for phase, colour, label in ((1, "k", "taught (leash)"), (4, "tab:blue", "reproduced")):
+        m = arrays["phase"] == phase
+        ax.plot(arrays["x"][m], arrays["y"][m], color=colour, lw=1.2 if phase == 1 else 0.6,
+                alpha=1.0 if phase == 1 else 0.6, label=label)
+    for k in (1, 2, 3):
+        x, y = arena.landmarks[f"checkpoint-{k}"]
+        ax.plot(x, y, "s", color="tab:red", ms=9)
+        ax.annotate(str(k), (x, y), xytext=(5, 5), textcoords="offset points", color="tab:red")
+    ax.legend(loc="upper right", fontsize=8)
+    ax.set_title("patrol: taught and reproduced trajectories")
+    paths = []
+    for name, fig in (("map.png", plot_map(arena, agent, arrays)),
+                      ("trajectories.png", fig_b), ("waits_table.png", plot_waits_table(rows))):
+        fig.savefig(out / name, dpi=110)
+        plt.close(fig)
+        paths.append(out / name)
+    return paths

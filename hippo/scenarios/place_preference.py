@@ -53,8 +53,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 @dataclass
 class Log:
-    """Per-tick arrays of the whole run."""
+    """Per-tick arrays of the whole run (``n_drives`` columns of drive levels)."""
 
+    n_drives: int = 1
     cols: dict[str, list] = field(default_factory=lambda: {k: [] for k in (
         "t", "x", "y", "heading", "speed", "zone", "sound", "winner", "mode", "prediction",
         "non_occurrence", "phase", "trial", "drives")})
@@ -76,7 +77,7 @@ class Log:
             c["mode"].append(0)
             c["prediction"].append(0.0)
             c["non_occurrence"].append(False)
-            c["drives"].append([0.0])
+            c["drives"].append([0.0] * self.n_drives)
         else:
             s = agent.snapshot()
             for k in ("winner", "mode", "prediction", "non_occurrence", "drives"):

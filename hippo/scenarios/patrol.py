@@ -1,0 +1,280 @@
+"""HIREL III-B security patrol: learn a loop on a leash, learn how long to wait at each
+checkpoint, reproduce it alone.
+
+Phases (each with a progress bar):
+
+1. **exploration** — place cells from an unsupervised wall-following tour of ``patrol_course()``
+   (RC-SFA-ICA on the robot's own sensors; ``--place-cells ground-truth`` for comparison).
+2. **leash** — the teacher leads one loop; the robot learns places and transitions.
+3. **reproduction** — the robot reproduces the loop alone (no drive: the only known way on).
+4. **checkpoints** — on the next loop the teacher blocks the robot at three checkpoints for
+   ``--waits`` seconds; each checkpoint's wait is tied to the place where it happened and to its
+   own drive.
+5. **patrol** — ``--loops`` loops alone: at each checkpoint the drive makes the robot stop, the
+   learned delay ends the wait, and it moves on.
+6. **adaptation** — a longer block at checkpoint 1 and an early leash restart at checkpoint 2,
+   then one more loop: the waits follow.
+7. **kidnap** — the robot is put down on the path and resumes toward a checkpoint.
+
+``run.npz`` holds per-tick ``t, x, y, heading, speed, zone, sound, winner, drives, mode,
+prediction, non_occurrence, phase, trial`` and the teacher's events.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+import numpy as np
+
+from hippo.agent import Agent, AgentParams
+from hippo.cognitive_map import DriveParams, PlannerParams
+from hippo.io import save_npz
+from hippo.progress import Progress
+from hippo.scenarios._common import prepare_out, write_metrics
+from hippo.scenarios.place_preference import Log, explore, make_places, run_agent
+from hippo.sim import World, arenas
+
+PHASES = ("exploration", "leash", "reproduction", "checkpoints", "patrol", "adaptation",
+          "kidnap")
+
+
+def _waits(text: str) -> list[float]:
+    try:
+        w = [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--waits takes numbers separated by commas, got "
+                                         f"{text!r}") from None
+    if len(w) != 3 or not all(math.isfinite(v) and 0.5 <= v <= 120 for v in w):
+        raise argparse.ArgumentTypeError(f"--waits needs three waits between 0.5 and 120 s, "
+                                         f"got {text!r}")
+    return w
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--waits", type=_waits, default=[24.1, 19.1, 11.6],
+                        help="checkpoint waits in s (default: HIREL's 24.1,19.1,11.6)")
+    parser.add_argument("--loops", type=int, default=5, help="autonomous patrol loops")
+    parser.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned")
+    parser.add_argument("--explore-min", type=float, default=30.0, help="exploration, minutes")
+    parser.add_argument("--units", type=int, default=24, help="learned place cells (ICA units)")
+
+
+class Loop:
+    """Counts laps of the robot around the course (by the angle around its centre)."""
+
+    def __init__(self, centre: tuple[float, float]) -> None:
+        self.cx, self.cy = centre
+        self.angle = None
+        self.turns = 0.0
+
+    def update(self, x: float, y: float) -> float:
+        a = math.atan2(y - self.cy, x - self.cx)
+        if self.angle is not None:
+            self.turns += ((a - self.angle + math.pi) % (2 * math.pi) - math.pi) / (2 * math.pi)
+        self.angle = a
+        return self.turns
+
+
+def run(args: argparse.Namespace) -> dict:
+    out = prepare_out(args.out)
+    seed = int(args.seed)
+    quick = bool(args.quick)
+    waits = list(args.waits)
+    loops = min(args.loops, 2) if quick else int(args.loops)
+    if loops < 1:
+        raise SystemExit("--loops must be >= 1")
+    explore_min = 10.0 if quick else args.explore_min
+    units = min(args.units, 16) if quick else args.units
+    arena = arenas.patrol_course()
+    world = World(arena, sensors="ir8", seed=seed)
+    dt = world.dt
+    log = Log(n_drives=3)
+    t0 = time.perf_counter()
+    checkpoints = [arena.landmarks[f"checkpoint-{k}"] for k in (1, 2, 3)]
+    names = [f"checkpoint-{k}" for k in (1, 2, 3)]
+
+    # 1. exploration: place cells only (HIREL learns the map on the leash)
+    ticks = round(explore_min * 60 / dt)
+    explored = explore(world, ticks, 0.0, seed, log, "exploration")
+    places = make_places(args.place_cells, arena, np.array([o.ir for o in explored]), units, seed)
+    drive = DriveParams(epsilon=0.01, learning_rate=0.5)
+    params = AgentParams(planner=PlannerParams(w=0.9, noise=0.0, exploration_threshold=0.05))
+    agent = Agent(places, drives=dict.fromkeys(names, drive), params=params,
+                  sensors=world.sensors, robot=world.robot, seed=seed)
+    obs = explored[-1]
+    loop = Loop((74.0, 56.0))
+
+    def lap_until(target: float):
+        def until(o) -> bool:
+            return loop.update(o.pose[0], o.pose[1]) >= target
+        return until
+
+    # let the place cells settle on the course before the leash
+    agent.lifted()
+    obs = run_agent(world, agent, obs, int(agent.p.settle_time / dt) + 1, log, 1, 0)
+
+    # 2. one loop on the leash, counter-clockwise from the nearest waypoint
+    wp = arenas.loop_waypoints()[:-1]
+    i0 = int(np.argmin([math.hypot(x - obs.pose[0], y - obs.pose[1]) for x, y in wp]))
+    route = wp[i0:] + wp[:i0] + [wp[i0]]
+    world.teacher.lead(route)
+    loop.update(*obs.pose[:2])
+    with Progress(1, "leash") as bar:
+        obs = run_agent(world, agent, obs, 6000, log, 1, 0,
+                        until=lambda o: not world.teacher.leading)
+        bar.update()
+
+    # 3. reproduction: no drive is active, the only known way on is the taught loop
+    agent.drives.step(0.0)
+    start_turns = loop.update(*obs.pose[:2])
+    with Progress(1, "reproduction") as bar:
+        obs = run_agent(world, agent, obs, int(400 / dt), log, 2, 0,
+                        until=lap_until(start_turns + 1.0))
+        reproduced = loop.turns - start_turns
+        bar.update()
+
+    # 4. checkpoints: block the robot at each checkpoint for its wait, reward its drive after
+    taught: list[dict] = []
+    with Progress(3, "checkpoints") as bar:
+        for k, (cx, cy) in enumerate(checkpoints):
+            obs = run_agent(world, agent, obs, int(300 / dt), log, 3, k,
+                            until=lambda o, cx=cx, cy=cy: math.hypot(o.pose[0] - cx,
+                                                                     o.pose[1] - cy) < 12.0)
+            world.teacher.block(waits[k])
+            tb = obs.t
+            obs = run_agent(world, agent, obs, int((waits[k] + 1) / dt), log, 3, k,
+                            until=lambda o: not world.teacher.blocking)
+            agent.reward(names[k])
+            obs = run_agent(world, agent, obs, int(10 / dt), log, 3, k,
+                            until=lambda o: o.speed > world.robot.moving_threshold)
+            taught.append({"block_s": waits[k], "block_t": tb})
+            bar.update()
+
+    # 5. autonomous patrol
+    for d in names:
+        agent.drives.set_level(d, 1.0)
+    start_turns = loop.update(*obs.pose[:2])
+    with Progress(loops, "patrol") as bar:
+        for k in range(loops):
+            obs = run_agent(world, agent, obs, int(600 / dt), log, 4, k,
+                            until=lap_until(start_turns + k + 1.0))
+            bar.update()
+    completed = loop.turns - start_turns
+
+    # 6. adaptation: a longer block at checkpoint 1, an early leash restart at checkpoint 2
+    adapt = {}
+    longer = waits[0] + 8.0
+    (c1x, c1y), (c2x, c2y) = checkpoints[0], checkpoints[1]
+    obs = run_agent(world, agent, obs, int(400 / dt), log, 5, 0,
+                    until=lambda o: math.hypot(o.pose[0] - c1x, o.pose[1] - c1y) < 12.0)
+    world.teacher.block(longer)
+    obs = run_agent(world, agent, obs, int((longer + 10) / dt), log, 5, 0,
+                    until=lambda o: not world.teacher.blocking)
+    obs = run_agent(world, agent, obs, int(400 / dt), log, 5, 1,
+                    until=lambda o: agent.mode == "wait"
+                    and math.hypot(o.pose[0] - c2x, o.pose[1] - c2y) < 25.0)
+    shorter = waits[1] / 2
+    obs = run_agent(world, agent, obs, int(shorter / dt), log, 5, 1)
+    _, path = arena.shortest_path(obs.pose[:2], (c2x + 0.0, c2y + 30.0))
+    world.teacher.lead(path)
+    obs = run_agent(world, agent, obs, 2000, log, 5, 1, until=lambda o: not world.teacher.leading)
+    start_turns = loop.update(*obs.pose[:2])
+    i_adapt = len(log.cols["t"])
+    obs = run_agent(world, agent, obs, int(600 / dt), log, 5, 2,
+                    until=lap_until(start_turns + 1.0))
+    i_adapt_end = len(log.cols["t"])
+
+    # 7. kidnap onto the path: which checkpoint does the robot head for?
+    levels = {n: agent.drives.level(n) for n in names}
+    kx, ky = arenas.loop_waypoints()[9]
+    world.place_robot(kx, ky, obs.pose[2], event="kidnap")
+    agent.lifted()
+    i_kid = len(log.cols["t"])
+    obs = run_agent(world, agent, obs, int(300 / dt), log, 6, 0,
+                    until=lambda o: agent.mode == "wait")
+    wall = time.perf_counter() - t0
+
+    arrays = log.arrays()
+    stops = _stops(arrays, checkpoints, world.robot.moving_threshold)
+    learned = [_longest_stop(stops, k, phase=3) for k in range(3)]
+    rows = []
+    for k in range(3):
+        rep = [s["duration"] for s in stops if s["checkpoint"] == k and s["phase"] == 4]
+        learned_wait = learned[k]["duration"] if learned[k] else None
+        err = [abs(r - learned_wait) / learned_wait for r in rep] if learned_wait else []
+        rows.append({"checkpoint": names[k], "taught_block_s": waits[k],
+                     "learned_wait_s": learned_wait, "reproduced_waits_s": rep,
+                     "mean_s": float(np.mean(rep)) if rep else None,
+                     "sd_s": float(np.std(rep)) if rep else None,
+                     "max_rel_error": float(max(err)) if err else None})
+    adapt_stops = [s for s in stops if i_adapt <= s["i0"] < i_adapt_end]
+    for k, key, taught_s in ((0, "longer_block", longer), (1, "leash_restart", shorter)):
+        after = [s["duration"] for s in adapt_stops if s["checkpoint"] == k]
+        adapt[key] = {"before_s": rows[k]["mean_s"], "taught_s": taught_s,
+                      "after_s": after[0] if after else None}
+    kid_stops = [s for s in stops if s["i0"] >= i_kid]
+    first = names[kid_stops[0]["checkpoint"]] if kid_stops else None
+    metrics = {
+        "place_cells": args.place_cells, "seed": seed, "waits_s": waits, "loops": loops,
+        "quick": quick, "units": places.n_units,
+        "reproduced_loop_fraction": float(reproduced),
+        "loops_completed": float(completed),
+        "loop_completion": float(min(completed / loops, 1.0)),
+        "checkpoints": rows,
+        "adaptation": adapt,
+        "kidnap": {"drive_levels": levels, "highest_drive": max(levels, key=levels.get),
+                   "first_checkpoint_reached": first},
+        "states": agent.layer.n_states, "transitions": len(agent.graph),
+        "simulated_s": float(obs.t), "wall_s": wall,
+        "realtime_factor": float(obs.t) / wall,
+    }
+    ev = world.events
+    save_npz(out / "run.npz", {**arrays, "drive_names": np.array(agent.drives.names),
+                               "event_t": np.array([e[0] for e in ev], float),
+                               "event_kind": np.array([e[1] for e in ev], dtype="<U16"),
+                               "event_detail": np.array([e[2] for e in ev], dtype="<U64")})
+    agent.graph.to_graphml(out / "map.graphml")
+    from hippo.plots.agent import plot_patrol
+
+    plot_patrol(out, arena, agent, arrays, rows)
+    write_metrics(out, metrics)
+    return metrics
+
+
+def _stops(arrays: dict, checkpoints: list, threshold: float) -> list[dict]:
+    """Every stretch of >= 1 s without translation near a checkpoint (< 30 cm).
+
+    In the teaching phase (3) any such stop counts (the teacher's block); elsewhere only stops
+    the agent chose (it was in its "wait" mode), not stalls at walls.
+    """
+    still = arrays["speed"] <= threshold
+    waiting = arrays["mode"] == 3
+    out = []
+    i, n = 0, len(still)
+    while i < n:
+        if not still[i]:
+            i += 1
+            continue
+        j = i
+        while j < n and still[j]:
+            j += 1
+        dur = float(arrays["t"][j - 1] - arrays["t"][i] + (arrays["t"][1] - arrays["t"][0]))
+        x, y = arrays["x"][i], arrays["y"][i]
+        d = [math.hypot(x - cx, y - cy) for cx, cy in checkpoints]
+        k = int(np.argmin(d))
+        phase = int(arrays["phase"][i])
+        if phase == 3:
+            k = int(arrays["trial"][i])
+        chosen = phase == 3 or bool(np.any(waiting[i:j]))
+        if dur >= 1.0 and d[k] < 30.0 and chosen:
+            out.append({"i0": i, "duration": dur, "checkpoint": k, "phase": phase})
+        i = j
+    return out
+
+
+def _longest_stop(stops: list[dict], k: int, *, phase: int) -> dict | None:
+    """The longest stop at checkpoint ``k`` during ``phase`` (the taught wait)."""
+    cands = [s for s in stops if s["checkpoint"] == k and s["phase"] == phase]
+    return max(cands, key=lambda s: s["duration"]) if cands else None
