@@ -233,15 +233,17 @@ class Reservoir:
 
     # ------------------------------------------------------------------ offline harvest
     def run(self, U: np.ndarray | torch.Tensor, *, leak: LeakSpec | np.ndarray | None = None,
-            x0: np.ndarray | torch.Tensor | None = None) -> torch.Tensor:
+            x0: np.ndarray | torch.Tensor | None = None, threads: int = 1) -> torch.Tensor:
         """States for a whole input sequence (torch tensor on :attr:`device`).
 
         ``U`` is ``(T, n_u)`` (one stream) or ``(B, T, n_u)`` (B streams). ``leak`` overrides the
         reservoir's own rates: a leak spec for all streams, or a ``(B, k)``/``(B, N)`` array of
         B leak configurations (a 2-D ``leak`` with a 2-D ``U`` feeds the one stream to all B
         configurations: a leak sweep). ``x0`` is the initial state (default 0), ``(N,)`` or
-        ``(B, N)``. Returns ``(T, N)`` for one stream and one leak, else ``(B, T, N)``;
-        row ``t`` is the state after feeding ``U[t]``.
+        ``(B, N)``. ``threads`` is torch's CPU thread count for the tick loop (default 1: the
+        per-tick products are small, and extra threads only pay off for large batches on idle
+        cores). Returns ``(T, N)`` for one stream and one leak, else ``(B, T, N)``; row ``t``
+        is the state after feeding ``U[t]``.
         """
         Ut = torch.as_tensor(U, dtype=self.dtype, device=self.device)
         if Ut.ndim not in (2, 3) or Ut.shape[-1] != self.n_inputs:
@@ -279,9 +281,8 @@ class Reservoir:
         states = torch.empty(T, B, N, dtype=self.dtype, device=self.device)
         if T == 0:
             return self._shape_out(states, batched_input or batched_leak)
-        # Per-tick work is small: one thread avoids OpenMP barriers that stall for milliseconds
-        # when the cores are shared; only a large batched product gets the default threads.
-        threads = torch.get_num_threads() if B * N >= 4096 else 1
+        # Per-tick work is small: by default one thread, since OpenMP barriers stall for
+        # milliseconds whenever the cores are shared with other work.
         with torch.inference_mode(), _num_threads(threads if self.device.type == "cpu" else None):
             # input drive a ⊙ W_in u(t) for all t at once: (T, B, N)
             drive = torch.matmul(Ut, self._W_in_t.T).transpose(0, 1).contiguous()

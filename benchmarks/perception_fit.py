@@ -1,0 +1,194 @@
+"""Benchmark: RC-SFA-ICA fit on the SMC09 size, hippo vs the peer pipeline, side by side.
+
+SMC09 size: 18,120 ticks × 8 IR inputs (a real two-rooms recording from ``hippo.sim``), 600
+neurons, 4 SFA / 4 ICA units, trained on 7/8. Timed in one process, one after the other:
+
+* reservoir harvest — ``hippo.perception.Reservoir.run`` (torch float32) vs ReservoirPy's
+  ``Reservoir`` (numpy float64; same W_in/W_res);
+* SFA fit — ``hippo.perception.SFA`` (whitening cutoff + symmetric eigenproblem) vs
+  ``sksfa.SFA`` (sklearn-sfa) and a straightforward ``scipy.linalg.eigh(A, B)`` SFA;
+* ICA fit — ``hippo.perception.FastICA`` (cube, symmetric; 1 restart for parity, and the
+  default 10) vs ``sklearn.decomposition.FastICA(fun="cube")``;
+* transform of the whole recording, the whole fit, a 16-configuration leak-rate sweep
+  (``fit_leak_sweep``: one batched harvest, then 16 SFA+ICA fits), and ``RCSFAICA.step()`` per
+  tick (the closed loop).
+
+Peers live in their own environment, never as project dependencies::
+
+    python -m venv benchmarks/.venv-peers --system-site-packages
+    benchmarks/.venv-peers/bin/pip install reservoirpy scikit-learn sklearn-sfa
+    . .venv/bin/activate && python benchmarks/perception_fit.py [--repeats 3]
+
+The script runs in the project's environment and appends ``benchmarks/.venv-peers``'s
+site-packages to ``sys.path`` (after the project's, so numpy/torch stay the project's). MDP's
+``SFANode`` is not used: MDP 3.6 does not import with numpy 2. Missing peers are skipped.
+Times are the best of ``--repeats`` runs (wall clock, seconds).
+"""
+
+from __future__ import annotations
+
+import argparse
+import glob
+import os
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.extend(sorted(glob.glob(str(ROOT / "benchmarks/.venv-peers/lib/python*/site-packages"))))
+
+from hippo.perception import (  # noqa: E402
+    RCSFAICA,
+    SFA,
+    FastICA,
+    ICAConvergenceWarning,
+    Reservoir,
+    fit_leak_sweep,
+)
+
+warnings.simplefilter("ignore", ICAConvergenceWarning)
+
+
+def best_of(fn, repeats: int) -> tuple[float, object]:
+    best, out = np.inf, None
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def recording(ticks: int) -> np.ndarray:
+    try:
+        os.environ.setdefault("HIPPO_QUIET", "1")
+        from hippo.sim.record import record
+
+        return record("two-rooms", ticks, seed=0, rho=0.008, sensors="ir8", progress=False).sensors
+    except Exception as exc:  # pragma: no cover - the sim is part of the project
+        print(f"(no sim recording: {exc}; using random inputs)", file=sys.stderr)
+        return np.random.default_rng(0).random((ticks, 8))
+
+
+def eigh_sfa(X: np.ndarray, n: int) -> np.ndarray:
+    """The textbook SFA: z-score, then scipy.linalg.eigh(A, B)."""
+    import scipy.linalg
+
+    Z = (X - X.mean(0)) / X.std(0)
+    B = Z.T @ Z / len(Z)
+    D = np.diff(Z, axis=0)
+    A = D.T @ D / len(D)
+    _, W = scipy.linalg.eigh(A, B, subset_by_index=[0, n - 1])
+    return W
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--ticks", type=int, default=18120)
+    ap.add_argument("--neurons", type=int, default=600)
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--sweep", type=int, default=16, help="leak configurations in the sweep")
+    a = ap.parse_args(argv)
+    U = recording(a.ticks)
+    n_train = a.ticks * 7 // 8
+    Utr = U[:n_train]
+    rows: list[tuple[str, float | None, float | None, str]] = []
+
+    model = RCSFAICA.smc09(n_reservoir=a.neurons, ica_restarts=1, seed=0)
+    res = Reservoir(model.params.reservoir_params())
+    # ---- hippo
+    t_h, X_t = best_of(lambda: res.run(Utr), a.repeats)
+    X = np.concatenate([Utr.astype(np.float32), X_t.numpy()], axis=1)
+    t_sfa, sfa = best_of(lambda: SFA(n_components=4).fit(X), a.repeats)
+    Y = sfa.transform(X)
+    t_ica, _ = best_of(lambda: FastICA(n_components=4, seed=0).fit(Y), a.repeats)
+    t_ica10, _ = best_of(lambda: FastICA(n_components=4, seed=0, n_restarts=10).fit(Y), a.repeats)
+    t_fit, _ = best_of(lambda: model.fit(Utr), a.repeats)
+    t_tr, _ = best_of(lambda: model.transform(U), a.repeats)
+    # closed loop: step() per tick
+    model.reset_state()
+    for u in U[:200]:
+        model.step(u)
+    n_step = min(len(U), 5000)
+    t0 = time.perf_counter()
+    for u in U[:n_step]:
+        model.step(u)
+    step_us = (time.perf_counter() - t0) / n_step * 1e6
+    leaks = [(a1, a2) for a1 in (0.03, 0.05, 0.08, 0.11) for a2 in (0.14, 0.15, 0.2, 0.3)]
+    leaks = leaks[: a.sweep]
+    t_sweep, _ = best_of(lambda: fit_leak_sweep(Utr, leaks, model.params), 1)
+    t_sweep_h, _ = best_of(lambda: res.run(Utr, leak=np.array(leaks)), 1)
+
+    # ---- peers
+    peer = {}
+    try:
+        from reservoirpy.nodes import Reservoir as RpyReservoir
+
+        def rpy_run():
+            node = RpyReservoir(units=a.neurons, lr=0.1, W=res.W_res, Win=res.W_in, bias=0.0,
+                                input_dim=8)
+            return node.run(Utr)
+
+        peer["harvest"], _ = best_of(rpy_run, a.repeats)
+        peer["harvest_name"] = "ReservoirPy"
+    except Exception as exc:
+        print(f"(ReservoirPy unavailable: {exc})", file=sys.stderr)
+    Xd = X.astype(np.float64)
+    try:
+        from sksfa import SFA as SkSFA
+
+        peer["sfa"], sk = best_of(lambda: SkSFA(n_components=4).fit(Xd), a.repeats)
+        peer["sfa_name"] = "sklearn-sfa"
+        peer["sfa_transform"] = sk.transform
+    except Exception as exc:
+        print(f"(sklearn-sfa unavailable: {exc})", file=sys.stderr)
+    try:
+        peer["eigh"], _ = best_of(lambda: eigh_sfa(Xd, 4), a.repeats)
+        peer["eigh_ok"] = "ok"
+    except Exception as exc:
+        peer["eigh"], peer["eigh_ok"] = None, f"fails: {type(exc).__name__}"
+    try:
+        from sklearn.decomposition import FastICA as SkICA
+
+        def sk_ica():
+            return SkICA(n_components=4, fun="cube", algorithm="parallel",
+                         whiten="unit-variance", random_state=0, max_iter=1000).fit(Y)
+
+        peer["ica"], _ = best_of(sk_ica, a.repeats)
+    except Exception as exc:
+        print(f"(scikit-learn unavailable: {exc})", file=sys.stderr)
+    if {"harvest", "ica"} <= peer.keys() and ("sfa" in peer or peer.get("eigh")):
+        sfa_peer = peer.get("sfa", peer.get("eigh"))
+        peer["fit"] = peer["harvest"] + sfa_peer + peer["ica"]
+
+    def row(name, mine, theirs, note=""):
+        rows.append((name, mine, theirs, note))
+
+    row("reservoir harvest (15,855 ticks)", t_h, peer.get("harvest"),
+        peer.get("harvest_name", "peer missing"))
+    row("SFA fit (608 dims -> 4)", t_sfa, peer.get("sfa"), peer.get("sfa_name", "peer missing"))
+    row("SFA fit, scipy eigh(A, B)", None, peer.get("eigh"), peer.get("eigh_ok", ""))
+    row("ICA fit (4 units, 1 start)", t_ica, peer.get("ica"), "sklearn FastICA cube")
+    row("ICA fit (4 units, 10 restarts)", t_ica10, None, "hippo default")
+    row("whole fit (1 ICA start)", t_fit, peer.get("fit"), "harvest + SFA + ICA")
+    row("transform (18,120 ticks)", t_tr, None, "harvest + projections")
+    row(f"leak sweep, {len(leaks)} configs, batched", t_sweep, None,
+        f"of which batched harvest {t_sweep_h:.2f} s")
+    row("step() per tick", step_us * 1e-6, None, f"{step_us:.1f} µs/tick")
+
+    print(f"\nRC-SFA-ICA on the SMC09 size: {a.ticks} ticks × 8 inputs, {a.neurons} neurons, "
+          f"4 SFA / 4 ICA, train {n_train} ticks (best of {a.repeats})\n")
+    print(f"{'stage':38s} {'hippo (s)':>10s} {'peer (s)':>10s} {'peer/hippo':>11s}  note")
+    print("-" * 96)
+    for name, mine, theirs, note in rows:
+        m = f"{mine:10.4f}" if mine is not None else f"{'-':>10s}"
+        t = f"{theirs:10.4f}" if theirs is not None else f"{'-':>10s}"
+        r = f"{theirs / mine:10.1f}x" if mine and theirs else f"{'':>11s}"
+        print(f"{name:38s} {m} {t} {r}  {note}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
