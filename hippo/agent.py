@@ -44,8 +44,14 @@ import numpy as np
 
 from hippo._checks import check_finite, check_positive
 from hippo.cognitive_map import Action, DriveParams, Drives, Planner, PlannerParams, TransitionGraph
+from hippo.perception.prototypes import PlacePrototypes
 from hippo.perception.states import StateLayer, StateLayerParams
-from hippo.sim.controllers import GoToHeading, ObstacleAvoidance, WallFollower, WallFollowerParams
+from hippo.sim.controllers import (
+    ObstacleAvoidance,
+    WallFollower,
+    WallFollowerParams,
+    WallGuidedHeading,
+)
 from hippo.sim.odometry import PathIntegrator
 from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
 from hippo.sim.world import Observation
@@ -79,19 +85,24 @@ class LearnedPlaceCells:
     """Place cells learned by RC-SFA-ICA from the robot's own distance sensors (the default).
 
     Wraps a fitted :class:`~hippo.perception.place_cells.RCSFAICA`; ``step`` feeds it the sensor
-    readings only (never the pose or odometry).
+    readings only (never the pose or odometry). With ``prototypes`` (a fitted
+    :class:`~hippo.perception.prototypes.PlacePrototypes`), the activities are those of
+    radial-basis place cells over the whole ICA population vector instead of the ICA units
+    themselves (less aliasing; see that module).
     """
 
     kind = "learned"
 
-    def __init__(self, model: Any) -> None:
+    def __init__(self, model: Any, prototypes: PlacePrototypes | None = None) -> None:
         if getattr(model, "ica_", None) is None:
             raise ValueError("LearnedPlaceCells needs a fitted RCSFAICA model")
         self.model = model
-        self.n_units = int(model.params.n_ica)
+        self.prototypes = prototypes
+        self.n_units = prototypes.n_units if prototypes is not None else int(model.params.n_ica)
 
     def step(self, obs: Observation) -> np.ndarray:
-        return self.model.step(obs.ir)
+        y = self.model.step(obs.ir)
+        return y if self.prototypes is None else self.prototypes.step(y)
 
     def reset(self) -> None:
         self.model.reset_state()
@@ -197,7 +208,8 @@ class Agent:
         self.explorer = WallFollower(WallFollowerParams(rho=self.p.explore_rho),
                                      sensors=self.sensors, robot=self.robot,
                                      rng=np.random.default_rng([seed, 8]))
-        self.steer = GoToHeading(sensors=self.sensors, robot=self.robot, speed=self.p.speed)
+        self.steer = WallGuidedHeading(sensors=self.sensors, robot=self.robot,
+                                       speed=self.p.speed)
         self.avoid = ObstacleAvoidance(sensors=self.sensors, robot=self.robot)
         self.pi = PathIntegrator()
         self.t = 0.0

@@ -33,7 +33,7 @@ from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.io import save_npz
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
-from hippo.scenarios.place_preference import Log, explore, make_places, run_agent
+from hippo.scenarios.place_preference import STATES, Log, explore, make_places, run_agent
 from hippo.sim import World, arenas
 
 PHASES = ("exploration", "leash", "reproduction", "checkpoints", "patrol", "adaptation",
@@ -58,7 +58,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--loops", type=int, default=5, help="autonomous patrol loops")
     parser.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned")
     parser.add_argument("--explore-min", type=float, default=30.0, help="exploration, minutes")
-    parser.add_argument("--units", type=int, default=24, help="learned place cells (ICA units)")
+    parser.add_argument("--units", type=int, default=24, help="ICA units of the place cells")
+    parser.add_argument("--places", type=int, default=32,
+                        help="place prototypes read out from the ICA units (learned cells)")
 
 
 class Loop:
@@ -98,9 +100,11 @@ def run(args: argparse.Namespace) -> dict:
     # 1. exploration: place cells only (HIREL learns the map on the leash)
     ticks = round(explore_min * 60 / dt)
     explored = explore(world, ticks, 0.0, seed, log, "exploration")
-    places = make_places(args.place_cells, arena, np.array([o.ir for o in explored]), units, seed)
+    places = make_places(args.place_cells, arena, np.array([o.ir for o in explored]), units, seed,
+                         args.places)
     drive = DriveParams(epsilon=0.01, learning_rate=0.5)
-    params = AgentParams(planner=PlannerParams(w=0.9, noise=0.0, exploration_threshold=0.05))
+    params = AgentParams(states=STATES,
+                         planner=PlannerParams(w=0.9, noise=0.0, exploration_threshold=0.05))
     agent = Agent(places, drives=dict.fromkeys(names, drive), params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)
     obs = explored[-1]

@@ -31,6 +31,8 @@ from hippo.agent import Agent, AgentParams, GroundTruthPlaceCells, LearnedPlaceC
 from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.io import save_npz
 from hippo.perception.place_cells import RCSFAICA
+from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
+from hippo.perception.states import StateLayerParams
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
 from hippo.sim import WallFollower, WallFollowerParams, World, arenas
@@ -47,7 +49,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--teach", type=int, default=3, help="guided (leash + block) trials")
     parser.add_argument("--trials", type=int, default=12, help="rewarded trials")
     parser.add_argument("--extinction", type=int, default=4, help="extinction trials")
-    parser.add_argument("--units", type=int, default=24, help="learned place cells (ICA units)")
+    parser.add_argument("--units", type=int, default=24, help="ICA units of the place cells")
+    parser.add_argument("--places", type=int, default=32,
+                        help="place prototypes read out from the ICA units (learned cells)")
     parser.add_argument("--trial-timeout", type=float, default=240.0, help="s per trial")
 
 
@@ -102,14 +106,23 @@ def explore(world: World, ticks: int, rho: float, seed: int, log: Log, desc: str
     return out
 
 
-def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: int):
-    """The place-cell source: RC-SFA-ICA fitted on the exploration, or ground truth."""
+def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: int,
+                n_places: int = 32):
+    """The place-cell source: RC-SFA-ICA fitted on the exploration (``units`` ICA units read
+    out by ``n_places`` radial-basis prototypes over the ICA population vector), or ground
+    truth (Gaussian fields at the arena's labelled locations)."""
     if kind == "ground-truth":
         return GroundTruthPlaceCells(arena.locations, sigma=8.0)
     model = RCSFAICA(n_reservoir=400, leak=(0.05, 0.15), spectral_radius=0.99, n_sfa=units,
                      n_ica=units, ica_restarts=3, seed=seed)
-    model.fit(sensors)
-    return LearnedPlaceCells(model)
+    Y = model.fit_transform(sensors)
+    protos = PlacePrototypes(PrototypeParams(n_prototypes=n_places, seed=seed)).fit(Y)
+    model.reset_state()
+    return LearnedPlaceCells(model, protos)
+
+
+#: state-layer settings for place activities in [0, 1] (prototypes, Gaussian fields)
+STATES = StateLayerParams(normalize="fixed", place_scale=0.5)
 
 
 def run_agent(world: World, agent: Agent, obs, ticks: int, log: Log, phase: int, trial: int,
@@ -167,10 +180,12 @@ def run(args: argparse.Namespace) -> dict:
     # 1. exploration: place cells from the robot's own sensors, then the map
     ticks = round(explore_min * 60 / dt)
     explored = explore(world, ticks, 0.0, seed, log, "exploration")
-    places = make_places(args.place_cells, arena, np.array([o.ir for o in explored]), units, seed)
+    places = make_places(args.place_cells, arena, np.array([o.ir for o in explored]), units, seed,
+                         args.places)
     fit_s = time.perf_counter() - t0
     drive = DriveParams(epsilon=0.02, learning_rate=0.5)
-    params = AgentParams(planner=PlannerParams(w=0.9, noise=0.01, exploration_threshold=0.3))
+    params = AgentParams(states=STATES,
+                         planner=PlannerParams(w=0.9, noise=0.01, exploration_threshold=0.3))
     agent = Agent(places, drives={"sound": drive}, params=params, sensors=world.sensors,
                   robot=world.robot, seed=seed)
     with Progress(len(explored), "map learning") as bar:
@@ -202,7 +217,6 @@ def run(args: argparse.Namespace) -> dict:
     # 3-4. rewarded and extinction trials from varied start places
     starts = [arena.landmarks[f"start-{n}"] for n in ("south", "east", "north", "west")]
     results = []
-    sound_id = None
     n_total = n_trials + n_ext
     with Progress(n_total, "trials") as bar:
         for k in range(n_total):
@@ -243,7 +257,6 @@ def run(args: argparse.Namespace) -> dict:
                 rec["success"] = bool(exp.sounded)
                 if exp.sounded:
                     rec["wait_s"] = float(obs.t - rec["still_t"])
-                    sound_id = agent.state
             else:
                 moving = [i for i in range(i0, i1) if log.cols["t"][i] > rec.get("still_t", 1e9)
                           and log.cols["speed"][i] > world.robot.moving_threshold]
@@ -255,7 +268,7 @@ def run(args: argparse.Namespace) -> dict:
             bar.update()
 
     wall = time.perf_counter() - t0
-    learned_delay = _learned_reward_delay(agent, sound_id)
+    learned_delay = _learned_reward_delay(agent)
     rew = [r for r in results if r["rewarded"]]
     ext = [r for r in results if not r["rewarded"]]
     ratios = [r["path_cm"] / r["shortest_cm"] for r in rew
@@ -293,11 +306,13 @@ def run(args: argparse.Namespace) -> dict:
     return metrics
 
 
-def _learned_reward_delay(agent: Agent, sound_id: int | None) -> float | None:
-    """The delay the transition cells learned for ``still@goal -> sound``."""
-    if sound_id is None:
+def _learned_reward_delay(agent: Agent) -> float | None:
+    """The delay the transition cells learned for ``still@goal -> sound`` (median if several)."""
+    try:
+        sound = agent.layer.find("sound")
+    except ValueError:
         return None
     delays = [agent.cells.learned_delay(k) for k in agent.cells.transitions
-              if k[1] == sound_id and agent.layer.key(k[0]).kind == "still"]
+              if k[1] == sound and agent.layer.key(k[0]).kind == "still"]
     delays = [d for d in delays if d == d]
     return float(np.median(delays)) if delays else None

@@ -158,10 +158,11 @@ def patrol_course() -> Arena:
 
 
 def loop_waypoints() -> list[tuple[float, float]]:
-    """Centre line of the patrol course's corridor, counter-clockwise from the west corridor."""
-    pts = [(14, 60), (14, 30), (20, 12), (50, 11), (80, 11), (110, 11), (133, 16), (140, 30),
-           (140, 56), (140, 80), (134, 103), (110, 105), (80, 109), (50, 105), (26, 102),
-           (14, 80), (14, 60)]
+    """The patrol route for the teacher's leash: counter-clockwise, about 10 cm from the outer
+    wall (where the wall-following robot runs), from the west corridor."""
+    pts = [(10, 60), (10, 30), (14, 14), (50, 10), (80, 10), (110, 10), (136, 12), (148, 26),
+           (150, 56), (150, 80), (148, 104), (124, 110), (80, 110), (50, 110), (26, 108),
+           (12, 96), (10, 80), (10, 60)]
     return [(float(x), float(y)) for x, y in pts]
 
 

@@ -211,6 +211,36 @@ class GoToHeading:
         return self.robot.wheels_for(v, omega)
 
 
+class WallGuidedHeading:
+    """Go along a heading the way the robot explores: by following a wall when that goes the
+    right way, by steering to the heading otherwise.
+
+    While a wall is in range on the follower's side and the wall follower's own direction of
+    travel (the robot's heading) lies within ``tolerance`` of the target heading, the command is
+    the :class:`WallFollower`'s (without side switching), so the robot moves as it did when it
+    learned its place cells; otherwise :class:`GoToHeading` turns it toward the target. Place
+    cells learned from wall following stay in the regime they were trained in.
+    """
+
+    def __init__(self, *, sensors: str | SensorModel = "ir8", robot: RobotParams | None = None,
+                 side: int = -1, speed: float | None = None, tolerance: float = 1.2,
+                 params: WallFollowerParams | None = None) -> None:
+        base = params or WallFollowerParams()
+        fparams = WallFollowerParams(**{**base.__dict__, "rho": 0.0, "speed_drift": 0.0,
+                                        "speed_min": base.speed_max})
+        self.follower = WallFollower(fparams, sensors=sensors, robot=robot, rng=0, side=side)
+        self.steer = GoToHeading(sensors=sensors, robot=robot, speed=speed)
+        self.tolerance = tolerance
+
+    def act(self, obs: Observation, heading: float, target: float) -> tuple[float, float]:
+        g = self.follower.geom
+        d = g.distances(obs.ir)
+        wall = g.side_distance(d, self.follower.side) < g.model.range_max - 1
+        if wall and abs(wrap_angle(target - heading)) < self.tolerance:
+            return self.follower.act(obs)
+        return self.steer.act(obs, heading, target)
+
+
 class Stop:
     """Stand still."""
 
