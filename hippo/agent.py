@@ -161,7 +161,9 @@ class AgentParams:
     unstick_time: float = 4.0
     states: StateLayerParams = field(default_factory=StateLayerParams)
     spectral: SpectralParams = field(default_factory=SpectralParams)
-    transitions: TransitionParams = field(default_factory=TransitionParams)
+    #: latency 0.4 s = one tick from decision to motion + one tick of proprioceptive debounce
+    #: (``proprio_ticks - 1``): the robot's own end of a wait is then seen at the learned delay
+    transitions: TransitionParams = field(default_factory=lambda: TransitionParams(latency=0.4))
     non_occurrence: NonOccurrenceParams = field(default_factory=NonOccurrenceParams)
     planner: PlannerParams = field(default_factory=lambda: PlannerParams(w=0.9, noise=0.01))
 

@@ -152,11 +152,17 @@ def run(args: argparse.Namespace) -> dict:
                             until=lambda o: not world.teacher.blocking)
             agent.reward(names[k])
             obs = run_agent(world, agent, obs, int(10 / dt), log, 3, k,
-                            until=lambda o: o.speed > world.robot.moving_threshold)
+                            until=lambda o: agent.state is not None
+                            and agent.layer.key(agent.state).kind != "still")
             taught.append({"block_s": waits[k], "block_t": tb})
             bar.update()
 
-    # 5. autonomous patrol
+    # 5. autonomous patrol (the learned delays are read before it: the patrol re-learns them)
+    learned_delays = {}
+    for n in names:
+        delays = [agent.cells.learned_delay(t) for t in agent.drives.links(n)
+                  if t in agent.cells.transitions]
+        learned_delays[n] = float(np.median(delays)) if delays else None
     for d in names:
         agent.drives.set_level(d, 1.0)
     start_turns = loop.update(*obs.pose[:2])
@@ -195,9 +201,15 @@ def run(args: argparse.Namespace) -> dict:
     kx, ky = arenas.loop_waypoints()[9]
     world.place_robot(kx, ky, obs.pose[2], event="kidnap")
     agent.lifted()
-    i_kid = len(log.cols["t"])
+    t_kid = obs.t
     obs = run_agent(world, agent, obs, int(300 / dt), log, 6, 0,
                     until=lambda o: agent.mode == "wait")
+    kidnap_stop = None
+    if agent.mode == "wait":
+        d = [math.hypot(obs.pose[0] - cx, obs.pose[1] - cy) for cx, cy in checkpoints]
+        kidnap_stop = {"nearest_checkpoint": names[int(np.argmin(d))],
+                       "distance_cm": float(min(d)), "t_after_kidnap_s": float(obs.t - t_kid)}
+        obs = run_agent(world, agent, obs, int(5 / dt), log, 6, 0)
     wall = time.perf_counter() - t0
 
     arrays = log.arrays()
@@ -206,10 +218,12 @@ def run(args: argparse.Namespace) -> dict:
     rows = []
     for k in range(3):
         rep = [s["duration"] for s in stops if s["checkpoint"] == k and s["phase"] == 4]
-        learned_wait = learned[k]["duration"] if learned[k] else None
+        learned_wait = learned_delays[names[k]]
         err = [abs(r - learned_wait) / learned_wait for r in rep] if learned_wait else []
         rows.append({"checkpoint": names[k], "taught_block_s": waits[k],
+                     "taught_stop_s": learned[k]["duration"] if learned[k] else None,
                      "learned_wait_s": learned_wait, "reproduced_waits_s": rep,
+                     "stops_made": len(rep),
                      "mean_s": float(np.mean(rep)) if rep else None,
                      "sd_s": float(np.std(rep)) if rep else None,
                      "max_rel_error": float(max(err)) if err else None})
@@ -218,8 +232,6 @@ def run(args: argparse.Namespace) -> dict:
         after = [s["duration"] for s in adapt_stops if s["checkpoint"] == k]
         adapt[key] = {"before_s": rows[k]["mean_s"], "taught_s": taught_s,
                       "after_s": after[0] if after else None}
-    kid_stops = [s for s in stops if s["i0"] >= i_kid]
-    first = names[kid_stops[0]["checkpoint"]] if kid_stops else None
     metrics = {
         "place_cells": args.place_cells, "seed": seed, "waits_s": waits, "loops": loops,
         "quick": quick, "units": places.n_units,
@@ -228,8 +240,10 @@ def run(args: argparse.Namespace) -> dict:
         "loop_completion": float(min(completed / loops, 1.0)),
         "checkpoints": rows,
         "adaptation": adapt,
+        "checkpoint_stops_made": int(sum(r["stops_made"] for r in rows)),
+        "checkpoint_stops_expected": 3 * loops,
         "kidnap": {"drive_levels": levels, "highest_drive": max(levels, key=levels.get),
-                   "first_checkpoint_reached": first},
+                   "first_stop": kidnap_stop},
         "states": agent.layer.n_states, "transitions": len(agent.graph),
         "simulated_s": float(obs.t), "wall_s": wall,
         "realtime_factor": float(obs.t) / wall,

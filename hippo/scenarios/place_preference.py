@@ -237,13 +237,15 @@ def run(args: argparse.Namespace) -> dict:
                 exp(o)
                 if o.floor == 1 and "entered_t" not in rec:
                     rec["entered_t"] = o.t
-                if exp.still_since is not None and "still_t" not in rec:
-                    rec["still_t"] = exp.still_since
+                if exp.still_since is not None:  # the current stop in the zone
+                    run = (exp.still_since, o.t)
+                    if rewarded or run[1] - run[0] >= rec.get("still_s", 0.0):
+                        rec["still_t"], rec["still_s"] = run[0], run[1] - run[0]
                 if rewarded:
                     return o.sound
-                # extinction: done when the robot moves on after having stood in the zone
-                return "still_t" in rec and ((o.moving and o.floor != 1) or
-                                             o.t - rec["still_t"] > 60.0)
+                # extinction: done when the robot moves on after a real wait in the zone
+                return rec.get("still_s", 0.0) >= 2.0 and (
+                    (o.moving and o.floor != 1) or o.t - rec["still_t"] > 60.0)
 
             obs = run_agent(world, agent, obs, limit, log, phase, k, until=done)
             i1 = len(log.cols["t"])
@@ -254,15 +256,16 @@ def run(args: argparse.Namespace) -> dict:
                 m = ts <= rec["entered_t"]
                 rec["path_cm"] = float(np.sum(np.hypot(np.diff(xs[m]), np.diff(ys[m]))))
             if rewarded:
+                rec.pop("still_s", None)
                 rec["success"] = bool(exp.sounded)
                 if exp.sounded:
                     rec["wait_s"] = float(obs.t - rec["still_t"])
+            elif rec.get("still_s", 0.0) >= 2.0:
+                # the longest stop in the zone ended when the robot moved again
+                rec["still_s"] = float(round(rec["still_s"] + dt, 6))
+                rec["resume_t"] = rec["still_t"] + rec["still_s"]
             else:
-                moving = [i for i in range(i0, i1) if log.cols["t"][i] > rec.get("still_t", 1e9)
-                          and log.cols["speed"][i] > world.robot.moving_threshold]
-                if "still_t" in rec and moving:
-                    rec["resume_t"] = float(log.cols["t"][moving[0]])
-                    rec["still_s"] = rec["resume_t"] - rec["still_t"]
+                rec.pop("still_s", None)
             results.append(rec)
             obs = run_agent(world, agent, obs, int(20 / dt), log, phase, k)
             bar.update()

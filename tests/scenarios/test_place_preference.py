@@ -1,0 +1,69 @@
+"""Place preference (HIREL III-A) end to end, in --quick mode: the metrics CI checks."""
+
+import json
+
+import numpy as np
+import pytest
+
+from hippo.cli import run_scenario
+
+
+@pytest.fixture(scope="module")
+def gt(tmp_path_factory):
+    out = tmp_path_factory.mktemp("pp_gt")
+    return out, run_scenario("place-preference", ["--quick", "--place-cells", "ground-truth",
+                                                  "--out", str(out)])
+
+
+@pytest.fixture(scope="module")
+def learned(tmp_path_factory):
+    out = tmp_path_factory.mktemp("pp_learned")
+    return out, run_scenario("place-preference", ["--quick", "--out", str(out)])
+
+
+def test_outputs_are_written(learned):
+    out, m = learned
+    assert json.loads((out / "metrics.json").read_text())["place_cells"] == "learned"
+    for name in ("map.png", "trajectories.png", "waits.png", "map.graphml"):
+        assert (out / name).stat().st_size > 0
+    with np.load(out / "run.npz") as run:
+        for key in ("t", "x", "y", "heading", "speed", "zone", "sound", "winner", "drives",
+                    "event_t", "event_kind"):
+            assert key in run.files
+        assert len(run["t"]) == len(run["winner"]) == len(run["drives"])
+        assert run["sound"].sum() >= m["rewarded_successes"]
+
+
+def test_ground_truth_solves_the_task(gt):
+    _, m = gt
+    assert m["rewarded_successes"] == m["rewarded_trials"] == 4
+    assert m["learned_delay_s"] == pytest.approx(7.0, rel=0.03)
+    assert all(7.0 <= w <= 7.0 + 0.45 for w in m["waits_s"])
+    assert m["extinction_stops"] == m["extinction_trials"]
+    # gives up within 2 s after the learned delay (HIREL: "a few seconds more")
+    assert all(0.0 < d <= 2.0 for d in m["extinction_resume_delays_s"])
+
+
+def test_learned_place_cells_solve_the_task(learned):
+    _, m = learned
+    assert m["place_cells"] == "learned"
+    assert m["rewarded_successes"] >= 3  # of 4 quick trials (measured: 4 of 4 on seeds 0, 1)
+    assert m["learned_delay_s"] == pytest.approx(7.0, rel=0.03)
+    assert m["extinction_stops"] >= 1
+    assert all(0.0 < d <= 2.0 for d in m["extinction_resume_delays_s"])
+    assert m["path_length_ratio"] is not None and m["path_length_ratio"] >= 1.0
+
+
+def test_an_untuned_delay_is_learned(tmp_path):
+    m = run_scenario("place-preference", ["--quick", "--place-cells", "ground-truth",
+                                          "--delay", "4.3", "--seed", "5", "--out",
+                                          str(tmp_path)])
+    assert m["rewarded_successes"] >= 3
+    assert m["learned_delay_s"] == pytest.approx(4.3, rel=0.05)
+    # the sound comes on the first tick after 4.3 s of stillness, heard one tick later
+    assert all(4.3 <= w <= 4.3 + 0.45 for w in m["waits_s"])
+
+
+def test_bad_delay_is_refused(tmp_path):
+    with pytest.raises(SystemExit, match="delay"):
+        run_scenario("place-preference", ["--quick", "--delay", "-1", "--out", str(tmp_path)])

@@ -1,0 +1,118 @@
+"""The closed-loop agent: its pieces on small, checkable situations."""
+
+import math
+
+import numpy as np
+import pytest
+
+from hippo.agent import Agent, AgentParams, GroundTruthPlaceCells
+from hippo.cognitive_map import DriveParams
+from hippo.sim import ArenaBuilder, World, arenas
+
+
+def corridor_world():
+    arena = (ArenaBuilder("corridor", 200, 30).outer_walls().start(15, 15, 0.0).build())
+    return arena, World(arena, seed=0)
+
+
+def test_ground_truth_place_cells_equation():
+    pc = GroundTruthPlaceCells(np.array([[0.0, 0.0], [10.0, 0.0]]), sigma=5.0)
+
+    class Obs:
+        pose = (3.0, 4.0, 0.0)
+
+    a = pc.step(Obs())
+    np.testing.assert_allclose(a, [math.exp(-25 / 50), math.exp(-65 / 50)])
+
+
+def test_transitions_carry_path_integrated_headings():
+    _arena, world = corridor_world()
+    centres = np.array([[x, 15.0] for x in range(20, 200, 30)])
+    agent = Agent(GroundTruthPlaceCells(centres, sigma=8.0), drives={"sound": DriveParams()},
+                  sensors=world.sensors, robot=world.robot, seed=0)
+    obs = world.reset(0)
+    for _ in range(300):  # drive east along the corridor with the wall follower
+        obs = world.step(agent.step(obs))
+    moves = [t for t in agent.graph.transitions if not agent.graph.action(t).is_wait]
+    assert len(moves) >= 3
+    for t in moves:  # place k -> place k+1, eastwards, about 30 cm apart
+        a, b = (agent.layer.key(s).index for s in t)
+        assert b == a + 1
+        assert abs(agent.graph.action(t).heading) < 0.35
+        assert agent.graph.action(t).distance == pytest.approx(30.0, abs=8.0)
+
+
+def test_taught_wait_is_reproduced_at_the_learned_delay():
+    """Block the robot at a place for 6.3 s, reward the drive; the robot then stops there by
+    itself and waits the learned delay (the patrol mechanism on one checkpoint)."""
+    _arena, world = corridor_world()
+    centres = np.array([[x, 15.0] for x in range(20, 200, 30)])
+    agent = Agent(GroundTruthPlaceCells(centres, sigma=8.0),
+                  drives={"check": DriveParams(epsilon=0.05)}, sensors=world.sensors,
+                  robot=world.robot, seed=0)
+    obs = world.reset(0)
+    while obs.pose[0] < 110:
+        obs = world.step(agent.step(obs))
+    world.teacher.block(6.3)
+    while world.teacher.blocking:
+        obs = world.step(agent.step(obs))
+    agent.reward("check")
+    for _ in range(20):
+        obs = world.step(agent.step(obs))
+    link = next(iter(agent.drives.links("check")))
+    assert agent.layer.key(link[0]).kind == "still"
+    learned = agent.cells.learned_delay(link)
+    assert learned == pytest.approx(6.3, abs=0.3)
+    # go back to the start and come again with the drive up
+    world.place_robot(15, 15, 0.0)
+    agent.lifted()
+    agent.drives.set_level("check", 1.0)
+    stops, still_since = [], None
+    for _ in range(600):
+        obs = world.step(agent.step(obs))
+        if not obs.moving and still_since is None:
+            still_since = obs.t
+        elif obs.moving and still_since is not None:
+            stops.append(obs.t - still_since)
+            still_since = None
+    long_stops = [s for s in stops if s > 2.0]
+    assert len(long_stops) == 1
+    assert long_stops[0] == pytest.approx(learned, rel=0.03)
+
+
+def test_bad_input_is_refused():
+    _arena, world = corridor_world()
+    agent = Agent(GroundTruthPlaceCells(np.array([[20.0, 15.0]])), sensors=world.sensors,
+                  robot=world.robot)
+    obs = world.reset(0)
+    obs.ir = obs.ir.copy()
+    obs.ir[2] = np.nan
+    with pytest.raises(ValueError, match="non-finite"):
+        agent.step(obs)
+    obs.ir = np.ones(5)
+    with pytest.raises(ValueError, match="expected 8 sensor readings"):
+        agent.step(obs)
+    with pytest.raises(KeyError, match="unknown drive"):
+        agent.reward("thirst")
+    with pytest.raises(ValueError, match="settle_time"):
+        AgentParams(settle_time=-1)
+    with pytest.raises(ValueError, match="centre"):
+        GroundTruthPlaceCells(np.zeros((0, 2)))
+
+
+def test_same_seed_same_run():
+    def run(seed):
+        world = World(arenas.goal_arena(), seed=seed)
+        agent = Agent(GroundTruthPlaceCells(arenas.goal_arena().locations, 8.0),
+                      sensors=world.sensors, robot=world.robot, seed=seed)
+        obs = world.reset(seed)
+        xs = []
+        for _ in range(400):
+            obs = world.step(agent.step(obs))
+            xs.append(obs.pose)
+        return np.array(xs), agent.layer.n_states
+
+    a, na = run(3)
+    b, nb = run(3)
+    np.testing.assert_array_equal(a, b)
+    assert na == nb
