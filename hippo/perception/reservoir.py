@@ -110,6 +110,31 @@ def expand_leak(leak: LeakSpec, n_neurons: int) -> np.ndarray:
     return out
 
 
+def _loop_shared_np(drive: np.ndarray, M: np.ndarray, x: np.ndarray, states: np.ndarray) -> None:
+    """``states[t] = tanh(drive[t] + states[t-1] @ M)``, shapes (T, B, N), (N, N), (B, N)."""
+    pre = np.empty_like(x)
+    for t in range(drive.shape[0]):
+        np.matmul(x, M, out=pre)
+        pre += drive[t]
+        np.tanh(pre, out=states[t])
+        x = states[t]
+
+
+def _loop_batched_np(drive: np.ndarray, WT: np.ndarray, A: np.ndarray, oma: np.ndarray,
+                     x: np.ndarray, states: np.ndarray) -> None:
+    """B leak configurations: ``tanh(drive[t] + A ⊙ (x @ W_resᵀ) + (1 - A) ⊙ x)``."""
+    pre = np.empty_like(x)
+    tmp = np.empty_like(x)
+    for t in range(drive.shape[0]):
+        np.matmul(x, WT, out=pre)
+        pre *= A
+        pre += drive[t]
+        np.multiply(oma, x, out=tmp)
+        pre += tmp
+        np.tanh(pre, out=states[t])
+        x = states[t]
+
+
 @contextmanager
 def _num_threads(n: int | None) -> Iterator[None]:
     """Temporarily set torch's intra-op thread count (no-op for ``None``)."""
@@ -233,7 +258,8 @@ class Reservoir:
 
     # ------------------------------------------------------------------ offline harvest
     def run(self, U: np.ndarray | torch.Tensor, *, leak: LeakSpec | np.ndarray | None = None,
-            x0: np.ndarray | torch.Tensor | None = None, threads: int = 1) -> torch.Tensor:
+            x0: np.ndarray | torch.Tensor | None = None, threads: int = 1,
+            backend: str = "auto") -> torch.Tensor:
         """States for a whole input sequence (torch tensor on :attr:`device`).
 
         ``U`` is ``(T, n_u)`` (one stream) or ``(B, T, n_u)`` (B streams). ``leak`` overrides the
@@ -242,8 +268,11 @@ class Reservoir:
         configurations: a leak sweep). ``x0`` is the initial state (default 0), ``(N,)`` or
         ``(B, N)``. ``threads`` is torch's CPU thread count for the tick loop (default 1: the
         per-tick products are small, and extra threads only pay off for large batches on idle
-        cores). Returns ``(T, N)`` for one stream and one leak, else ``(B, T, N)``; row ``t``
-        is the state after feeding ``U[t]``.
+        cores). ``backend``: ``"auto"`` runs the tick loop with numpy on views of the torch
+        tensors when on the CPU (about 1.5x faster than per-tick torch calls, whose overhead
+        dominates at this size) and with torch on cuda; ``"torch"`` forces torch. Returns
+        ``(T, N)`` for one stream and one leak, else ``(B, T, N)``; row ``t`` is the state after
+        feeding ``U[t]``.
         """
         Ut = torch.as_tensor(U, dtype=self.dtype, device=self.device)
         if Ut.ndim not in (2, 3) or Ut.shape[-1] != self.n_inputs:
@@ -287,21 +316,29 @@ class Reservoir:
             # input drive a ⊙ W_in u(t) for all t at once: (T, B, N)
             drive = torch.matmul(Ut, self._W_in_t.T).transpose(0, 1).contiguous()
             drive = (drive * At).contiguous()
+            use_numpy = self.device.type == "cpu" and backend != "torch"
             if At.shape[0] == 1:
-                # shared leak: fold (1-a) and a into one matrix -> one addmm per tick
+                # shared leak: fold (1-a) and a into one matrix -> one product per tick
                 a = At[0]
                 M = self._W_res_t.T * a + torch.diag(1.0 - a)
-                for t in range(T):
-                    torch.tanh(torch.addmm(drive[t], x, M), out=states[t])
-                    x = states[t]
+                if use_numpy:
+                    _loop_shared_np(drive.numpy(), M.numpy(), x.numpy(), states.numpy())
+                else:
+                    for t in range(T):
+                        torch.tanh(torch.addmm(drive[t], x, M), out=states[t])
+                        x = states[t]
             else:
                 WT = self._W_res_t.T.contiguous()
                 oma = 1.0 - At
-                for t in range(T):
-                    pre = torch.addcmul(drive[t], At, torch.mm(x, WT))
-                    pre.addcmul_(oma, x)
-                    torch.tanh(pre, out=states[t])
-                    x = states[t]
+                if use_numpy:
+                    _loop_batched_np(drive.numpy(), WT.numpy(), At.numpy(), oma.numpy(),
+                                     x.numpy(), states.numpy())
+                else:
+                    for t in range(T):
+                        pre = torch.addcmul(drive[t], At, torch.mm(x, WT))
+                        pre.addcmul_(oma, x)
+                        torch.tanh(pre, out=states[t])
+                        x = states[t]
         return self._shape_out(states, batched_input or batched_leak)
 
     @staticmethod

@@ -133,3 +133,12 @@ def test_torch_input_and_dtype():
     r = Reservoir(small())
     X = r.run(torch.rand(20, 8))
     assert X.dtype == torch.float32 and X.shape == (20, 60)
+
+
+def test_numpy_and_torch_backends_agree():
+    r = Reservoir(small(), dtype="float64")
+    U = _inputs(200)
+    np.testing.assert_allclose(r.run(U).numpy(), r.run(U, backend="torch").numpy(), atol=1e-12)
+    leaks = np.array([[0.05, 0.15], [0.5, 0.9]])
+    np.testing.assert_allclose(r.run(U, leak=leaks).numpy(),
+                               r.run(U, leak=leaks, backend="torch").numpy(), atol=1e-12)
