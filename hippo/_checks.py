@@ -11,9 +11,11 @@ import numpy as np
 def check_finite(name: str, value: Any) -> np.ndarray:
     """Return ``value`` as a float array, or raise ``ValueError`` if it holds NaN or inf."""
     arr = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(arr)):
+    # one reduction on the hot path: a NaN or inf anywhere makes the sum non-finite
+    if not math.isfinite(float(np.add.reduce(arr, axis=None))):
         bad = int(np.size(arr) - np.count_nonzero(np.isfinite(arr)))
-        raise ValueError(f"{name} contains {bad} non-finite value(s) (NaN or inf)")
+        if bad:  # (a finite sum can only overflow when every value is finite)
+            raise ValueError(f"{name} contains {bad} non-finite value(s) (NaN or inf)")
     return arr
 
 

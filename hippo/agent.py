@@ -423,7 +423,12 @@ class Agent:
         """The per-tick signals a figure needs."""
         cur = self.current
         ro = self.readouts.get(cur) if cur is not None else None
+        sound = [r.prediction for k, r in self.readouts.items()
+                 if self.layer.key(k[1]).kind == "sound"]
         return {
+            "sound_prediction": max(sound, default=0.0),
+            "sound_non_occurrence": any(self.layer.key(k[1]).kind == "sound"
+                                        for k in self.non_occurrence),
             "winner": -1 if self.state is None else self.state,
             "mode": MODES.index(self.mode),
             "transition_a": -1 if cur is None else cur[0],

@@ -75,17 +75,22 @@ def plot_wait_profiles(arrays: Mapping[str, np.ndarray], trials: Sequence[Mappin
             tt = t[m] - r["still_t"]
             keep = (tt > -8) & (tt < delay + 12)
             axes[0, col].plot(tt[keep], arrays["speed"][m][keep], lw=1)
-            axes[1, col].plot(tt[keep], arrays["prediction"][m][keep], lw=1)
-            no = arrays["non_occurrence"][m][keep]
+            pred = arrays["sound_prediction"][m][keep]
+            axes[1, col].plot(tt[keep], pred, lw=1)
+            no = arrays["sound_non_occurrence"][m][keep]
             if np.any(no):
-                axes[1, col].plot(tt[keep][no], arrays["prediction"][m][keep][no], "rv", ms=6)
+                axes[1, col].plot(tt[keep][no], pred[no], "rv", ms=7, label="non-occurrence")
         for ax in axes[:, col]:
             ax.axvline(0, color="0.6", ls=":")
             ax.axvline(delay, color="tab:red", ls="--", lw=1)
         axes[0, col].set_title(name)
         axes[1, col].set_xlabel("time since the robot stopped in the goal zone (s)")
     axes[0, 0].set_ylabel("speed (cm/s)")
-    axes[1, 0].set_ylabel("prediction of the\nchosen transition")
+    axes[1, 0].set_ylabel("prediction of the sound")
+    for ax in axes[1]:
+        if ax.get_legend_handles_labels()[0]:
+            handles, labels = ax.get_legend_handles_labels()
+            ax.legend(handles[:1], labels[:1], fontsize=8, loc="upper right")
     return fig
 
 

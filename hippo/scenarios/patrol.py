@@ -234,7 +234,7 @@ def run(args: argparse.Namespace) -> dict:
                       "after_s": after[0] if after else None}
     metrics = {
         "place_cells": args.place_cells, "seed": seed, "waits_s": waits, "loops": loops,
-        "quick": quick, "units": places.n_units,
+        "quick": quick, "place_units": places.n_units,
         "reproduced_loop_fraction": float(reproduced),
         "loops_completed": float(completed),
         "loop_completion": float(min(completed / loops, 1.0)),

@@ -15,7 +15,8 @@ Phases (each with a progress bar):
    drive and the robot resumes exploring.
 
 ``run.npz`` holds per-tick ``t, x, y, heading, speed, zone, sound, winner, drives, mode,
-prediction, non_occurrence, phase, trial`` and the teacher's events.
+prediction, non_occurrence, sound_prediction, sound_non_occurrence, phase, trial`` and the
+teacher's events.
 """
 
 from __future__ import annotations
@@ -46,6 +47,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned")
     parser.add_argument("--explore-min", type=float, default=40.0,
                         help="exploration time in minutes (HIREL: 40)")
+    parser.add_argument("--explore-rho", type=float, default=0.0,
+                        help="side-switch probability of the exploring wall follower")
     parser.add_argument("--teach", type=int, default=3, help="guided (leash + block) trials")
     parser.add_argument("--trials", type=int, default=12, help="rewarded trials")
     parser.add_argument("--extinction", type=int, default=4, help="extinction trials")
@@ -62,7 +65,8 @@ class Log:
     n_drives: int = 1
     cols: dict[str, list] = field(default_factory=lambda: {k: [] for k in (
         "t", "x", "y", "heading", "speed", "zone", "sound", "winner", "mode", "prediction",
-        "non_occurrence", "phase", "trial", "drives")})
+        "non_occurrence", "sound_prediction", "sound_non_occurrence", "phase", "trial",
+        "drives")})
 
     def add(self, obs, agent: Agent | None, phase: int, trial: int) -> None:
         c = self.cols
@@ -81,10 +85,13 @@ class Log:
             c["mode"].append(0)
             c["prediction"].append(0.0)
             c["non_occurrence"].append(False)
+            c["sound_prediction"].append(0.0)
+            c["sound_non_occurrence"].append(False)
             c["drives"].append([0.0] * self.n_drives)
         else:
             s = agent.snapshot()
-            for k in ("winner", "mode", "prediction", "non_occurrence", "drives"):
+            for k in ("winner", "mode", "prediction", "non_occurrence", "sound_prediction",
+                      "sound_non_occurrence", "drives"):
                 c[k].append(s[k])
 
     def arrays(self) -> dict[str, np.ndarray]:
@@ -179,12 +186,12 @@ def run(args: argparse.Namespace) -> dict:
 
     # 1. exploration: place cells from the robot's own sensors, then the map
     ticks = round(explore_min * 60 / dt)
-    explored = explore(world, ticks, 0.0, seed, log, "exploration")
+    explored = explore(world, ticks, args.explore_rho, seed, log, "exploration")
     places = make_places(args.place_cells, arena, np.array([o.ir for o in explored]), units, seed,
                          args.places)
     fit_s = time.perf_counter() - t0
     drive = DriveParams(epsilon=0.02, learning_rate=0.5)
-    params = AgentParams(states=STATES,
+    params = AgentParams(states=STATES, explore_rho=args.explore_rho,
                          planner=PlannerParams(w=0.9, noise=0.01, exploration_threshold=0.3))
     agent = Agent(places, drives={"sound": drive}, params=params, sensors=world.sensors,
                   robot=world.robot, seed=seed)
@@ -278,7 +285,7 @@ def run(args: argparse.Namespace) -> dict:
               if r.get("success") and "path_cm" in r and r["shortest_cm"] > 0]
     metrics = {
         "place_cells": args.place_cells, "seed": seed, "delay_s": args.delay,
-        "quick": quick, "explore_min": explore_min, "units": places.n_units,
+        "quick": quick, "explore_min": explore_min, "place_units": places.n_units,
         "rewarded_trials": len(rew),
         "rewarded_successes": int(sum(bool(r.get("success")) for r in rew)),
         "waits_s": [r["wait_s"] for r in rew if "wait_s" in r],
