@@ -3,8 +3,9 @@
 One :meth:`Agent.step` per control tick, in the order of ``DESIGN.md``::
 
     PathIntegrator.step(odometry)     own pose estimate: headings for actions (never a place input)
-    place source .step(obs)           place-cell activities: learned RC-SFA-ICA (default) or
-                                      Gaussian fields on the true position (comparison only)
+    place source .step(obs)           place-cell activities: learned RC-SFA-ICA read out by
+                                      radial-basis prototypes (default), or Gaussian fields on
+                                      the true position (comparison only)
     StateLayer.step(...)              WTA over places + floor colour + sound + proprioception
     SpectralTiming.step(winner)       the new winner's battery restarts at each sensory event
     TransitionCells.step(battery)     learn A->B with its delay; predict the next states and when
@@ -406,7 +407,8 @@ class Agent:
             return 0.0, 0.0
         if self.mode in ("move", "approach") and self._heading is not None:
             # a heading that runs into a wall leaves the robot stalled: wall-follow a while
-            self._stalled = self._stalled + 1 if obs.speed < 0.5 else 0
+            own_speed = math.hypot(obs.odometry[0], obs.odometry[1]) / self.p.dt  # odometry
+            self._stalled = self._stalled + 1 if own_speed < 0.5 else 0
             if self._stalled * self.p.dt >= self.p.stall_time:
                 self._unstick_until, self._stalled = self.t + self.p.unstick_time, 0
             if self.t < self._unstick_until:
