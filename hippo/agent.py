@@ -212,7 +212,7 @@ class Agent:
                                      sensors=self.sensors, robot=self.robot,
                                      rng=np.random.default_rng([seed, 8]))
         self.steer = WallGuidedHeading(sensors=self.sensors, robot=self.robot,
-                                       speed=self.p.speed)
+                                       speed=self.p.speed, rng=np.random.default_rng([seed, 9]))
         self.avoid = ObstacleAvoidance(sensors=self.sensors, robot=self.robot)
         self.pi = PathIntegrator()
         self.t = 0.0

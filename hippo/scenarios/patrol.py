@@ -87,7 +87,7 @@ def run(args: argparse.Namespace) -> dict:
     loops = min(args.loops, 2) if quick else int(args.loops)
     if loops < 1:
         raise SystemExit("--loops must be >= 1")
-    explore_min = 10.0 if quick else args.explore_min
+    explore_min = args.explore_min
     units = min(args.units, 16) if quick else args.units
     arena = arenas.patrol_course()
     world = World(arena, sensors="ir8", seed=seed)

@@ -224,11 +224,12 @@ class WallGuidedHeading:
 
     def __init__(self, *, sensors: str | SensorModel = "ir8", robot: RobotParams | None = None,
                  side: int = -1, speed: float | None = None, tolerance: float = 1.2,
-                 params: WallFollowerParams | None = None) -> None:
+                 params: WallFollowerParams | None = None,
+                 rng: np.random.Generator | int | None = 0) -> None:
         base = params or WallFollowerParams()
-        fparams = WallFollowerParams(**{**base.__dict__, "rho": 0.0, "speed_drift": 0.0,
-                                        "speed_min": base.speed_max})
-        self.follower = WallFollower(fparams, sensors=sensors, robot=robot, rng=0, side=side)
+        # the exploring follower's speed statistics, without side switching
+        fparams = WallFollowerParams(**{**base.__dict__, "rho": 0.0})
+        self.follower = WallFollower(fparams, sensors=sensors, robot=robot, rng=rng, side=side)
         self.steer = GoToHeading(sensors=sensors, robot=robot, speed=speed)
         self.tolerance = tolerance
 
