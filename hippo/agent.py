@@ -351,7 +351,14 @@ class Agent:
             return
         choice = self.planner.decide(self.graph, self.drives, s, self.rng)
         tr = choice.transition
-        if choice.explored:  # no drive: explore by moving, never by stopping
+        if choice.explored:
+            if any(self.drives.level(n) >= self.p.planner.exploration_threshold
+                   for n in self.drives.names):
+                # a drive is active but no goal is reachable from here: leave this part of
+                # the map by exploring (a random known move could circle in it forever)
+                self.mode = "explore"
+                return
+            # no drive: explore along known transitions, by moving, never by stopping
             moves = [t for t in out if not self.graph.action(t).is_wait]
             if not moves:
                 self.mode = "move" if keep_heading else "explore"
@@ -381,7 +388,13 @@ class Agent:
             return
         ro = self.readouts.get(self.current)
         if self.mode == "approach":
-            if ro is None or ro.delay_over or ro.strength < self.p.transitions.min_strength:
+            # stop when the learned time-to-stop is over, or before the robot would usually
+            # have left the place (the timed prediction of the moves out of it)
+            leaving = any(r.elapsed_fraction >= 0.8 for k, r in self.readouts.items()
+                          if k != self.current and r.strength >= self.p.transitions.min_strength
+                          and self.layer.key(k[1]).kind in ("place", "colour"))
+            if (ro is None or ro.delay_over or leaving
+                    or ro.strength < self.p.transitions.min_strength):
                 self.mode, self._waiting_on = "wait", self.current
             return
         if self.mode != "wait" or self._waiting_on is None:

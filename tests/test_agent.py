@@ -76,7 +76,8 @@ def test_taught_wait_is_reproduced_at_the_learned_delay():
             stops.append(obs.t - still_since)
             still_since = None
     long_stops = [s for s in stops if s > 2.0]
-    assert len(long_stops) == 1
+    assert long_stops, "the robot never stopped at the taught place"
+    # the first stop (coming the taught way) lasts the learned delay
     assert long_stops[0] == pytest.approx(learned, rel=0.03)
 
 

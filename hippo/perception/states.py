@@ -407,6 +407,11 @@ class StateLayer:
             k = self._keys[self.winner]
             if k.kind == "still" and k.context is not None:
                 new = k.context
+        elif (self.winner is not None and self._keys[self.winner].kind == "colour"
+              and col != self._keys[self.winner].index and pa.size):
+            # the robot left the coloured floor: the most active place takes over at once
+            # (waiting for it to beat a silent colour by the margin could take minutes)
+            new = int(self._place_ids[int(np.argmax(pa))])
         elif (col is not None and self.winner is not None
               and self._keys[self.winner].kind not in ("place", "colour")
               and self._event_level(self.winner, snd, col, mov) == 0.0):

@@ -30,7 +30,6 @@ import numpy as np
 
 from hippo.agent import Agent, AgentParams
 from hippo.cognitive_map import DriveParams, PlannerParams
-from hippo.io import save_npz
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
 from hippo.scenarios.place_preference import STATES, Log, explore, make_places, run_agent
@@ -183,8 +182,9 @@ def run(args: argparse.Namespace) -> dict:
     obs = run_agent(world, agent, obs, int((longer + 10) / dt), log, 5, 0,
                     until=lambda o: not world.teacher.blocking)
     obs = run_agent(world, agent, obs, int(400 / dt), log, 5, 1,
-                    until=lambda o: agent.mode == "wait"
-                    and math.hypot(o.pose[0] - c2x, o.pose[1] - c2y) < 25.0)
+                    until=lambda o: agent.state is not None
+                    and agent.layer.key(agent.state).kind == "still"
+                    and math.hypot(o.pose[0] - c2x, o.pose[1] - c2y) < 30.0)
     shorter = waits[1] / 2
     obs = run_agent(world, agent, obs, int(shorter / dt), log, 5, 1)
     _, path = arena.shortest_path(obs.pose[:2], (c2x + 0.0, c2y + 30.0))
@@ -192,8 +192,9 @@ def run(args: argparse.Namespace) -> dict:
     obs = run_agent(world, agent, obs, 2000, log, 5, 1, until=lambda o: not world.teacher.leading)
     start_turns = loop.update(*obs.pose[:2])
     i_adapt = len(log.cols["t"])
-    obs = run_agent(world, agent, obs, int(600 / dt), log, 5, 2,
-                    until=lap_until(start_turns + 1.0))
+    # one loop and a bit: it starts just past checkpoint 2, which it must meet again
+    obs = run_agent(world, agent, obs, int(800 / dt), log, 5, 2,
+                    until=lap_until(start_turns + 1.25))
     i_adapt_end = len(log.cols["t"])
 
     # 7. kidnap onto the path: which checkpoint does the robot head for?
@@ -212,7 +213,7 @@ def run(args: argparse.Namespace) -> dict:
         obs = run_agent(world, agent, obs, int(5 / dt), log, 6, 0)
     wall = time.perf_counter() - t0
 
-    arrays = log.arrays()
+    arrays = log.save(out, agent, world)
     stops = _stops(arrays, checkpoints, world.robot.moving_threshold)
     learned = [_longest_stop(stops, k, phase=3) for k in range(3)]
     rows = []
@@ -248,12 +249,6 @@ def run(args: argparse.Namespace) -> dict:
         "simulated_s": float(obs.t), "wall_s": wall,
         "realtime_factor": float(obs.t) / wall,
     }
-    ev = world.events
-    save_npz(out / "run.npz", {**arrays, "drive_names": np.array(agent.drives.names),
-                               "event_t": np.array([e[0] for e in ev], float),
-                               "event_kind": np.array([e[1] for e in ev], dtype="<U16"),
-                               "event_detail": np.array([e[2] for e in ev], dtype="<U64")})
-    agent.graph.to_graphml(out / "map.graphml")
     from hippo.plots.agent import plot_patrol
 
     plot_patrol(out, arena, agent, arrays, rows)

@@ -25,6 +25,7 @@ import argparse
 import math
 import time
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -96,6 +97,18 @@ class Log:
 
     def arrays(self) -> dict[str, np.ndarray]:
         return {k: np.asarray(v) for k, v in self.cols.items()}
+
+    def save(self, out: Path, agent: Agent, world: World) -> dict[str, np.ndarray]:
+        """Write ``out/run.npz`` (per-tick arrays and the teacher's events) and
+        ``out/map.graphml``; returns the arrays."""
+        arrays = self.arrays()
+        ev = world.events
+        save_npz(out / "run.npz", {**arrays, "drive_names": np.array(agent.drives.names),
+                                   "event_t": np.array([e[0] for e in ev], float),
+                                   "event_kind": np.array([e[1] for e in ev], dtype="<U16"),
+                                   "event_detail": np.array([e[2] for e in ev], dtype="<U64")})
+        agent.graph.to_graphml(out / "map.graphml")
+        return arrays
 
 
 def explore(world: World, ticks: int, rho: float, seed: int, log: Log, desc: str) -> list:
@@ -302,13 +315,7 @@ def run(args: argparse.Namespace) -> dict:
         "realtime_factor": float(obs.t) / wall,
         "trials": results,
     }
-    arrays = log.arrays()
-    ev = world.events
-    save_npz(out / "run.npz", {**arrays, "drive_names": np.array(agent.drives.names),
-                               "event_t": np.array([e[0] for e in ev], float),
-                               "event_kind": np.array([e[1] for e in ev], dtype="<U16"),
-                               "event_detail": np.array([e[2] for e in ev], dtype="<U64")})
-    agent.graph.to_graphml(out / "map.graphml")
+    arrays = log.save(out, agent, world)
     from hippo.plots.agent import plot_place_preference
 
     plot_place_preference(out, arena, agent, arrays, results, args.delay)

@@ -183,3 +183,13 @@ def test_colour_takes_the_win_back_when_a_transient_event_ends_on_it():
     for _ in range(6):
         ev = layer.step(acts, colour=0, moving=True, dt=0.2)
     assert layer.key(ev.winner) == ("place", 1, None)
+
+
+def test_leaving_the_coloured_floor_hands_over_to_the_most_active_place():
+    layer = StateLayer(n_place=3)
+    weak = np.array([0.05, 0.0, 0.02])  # weak place cells: none beats a silent colour by margin
+    layer.step(weak, colour=0, moving=True, dt=0.2)
+    colour = layer.step(weak, colour=2, moving=True, dt=0.2).winner
+    assert layer.key(colour) == ("colour", 2, None)
+    ev = layer.step(weak, colour=0, moving=True, dt=0.2)
+    assert ev.changed and layer.key(ev.winner).kind == "place"
