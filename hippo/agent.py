@@ -37,6 +37,7 @@ the place field.
 from __future__ import annotations
 
 import math
+from collections import deque
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -55,7 +56,7 @@ from hippo.sim.controllers import (
 )
 from hippo.sim.odometry import PathIntegrator
 from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
-from hippo.sim.world import Observation
+from hippo.sim.world import Observation, wrap_angle
 from hippo.timing import (
     NonOccurrence,
     NonOccurrenceParams,
@@ -148,6 +149,12 @@ class AgentParams:
         place state again (learned place cells need a few seconds to recover; SMC09 Fig. 7).
     stall_time, unstick_time: a move that leaves the robot stalled for ``stall_time`` s (its
         heading runs into a wall) hands over to the wall follower for ``unstick_time`` s.
+    turn_discount: a move that would turn a moving robot around (> 100°) has its drive activity
+        multiplied by this when transitions compete (motor continuity against aliasing).
+    cycle_visits, cycle_window, cycle_explore: habituation. Entering the same place
+        ``cycle_visits`` times within ``cycle_window`` s while a drive is active means the map
+        is leading the robot in circles (noisy place states can make transitions point back
+        and forth); it then explores for ``cycle_explore`` s.
     """
 
     dt: float = 0.2
@@ -160,6 +167,10 @@ class AgentParams:
     settle_time: float = 6.0
     stall_time: float = 1.0
     unstick_time: float = 4.0
+    turn_discount: float = 0.5
+    cycle_visits: int = 3
+    cycle_window: float = 60.0
+    cycle_explore: float = 20.0
     states: StateLayerParams = field(default_factory=StateLayerParams)
     spectral: SpectralParams = field(default_factory=SpectralParams)
     #: latency 0.4 s = one tick from decision to motion + one tick of proprioceptive debounce
@@ -221,6 +232,8 @@ class Agent:
         self._settle_until = -math.inf
         self._stalled = 0
         self._unstick_until = -math.inf
+        self._visits: deque[tuple[float, int]] = deque()
+        self._explore_until = -math.inf
         self._reset_episode()
 
     # -- episode bookkeeping ------------------------------------------------------------------
@@ -247,6 +260,8 @@ class Agent:
         for d in list(self._inhibited):
             self.drives.release(d)
         self._reset_episode()
+        self._visits.clear()
+        self._explore_until = -math.inf
         self._settle_until = self.t + self.p.settle_time
 
     def reward(self, drive: str) -> None:
@@ -332,7 +347,23 @@ class Agent:
                 self._choose(ctx, exclude_wait=True)
             return
         self._waiting_on = None
+        came_from = self.layer.key(prev).kind if prev is not None else None
+        if kind == "place" and came_from in ("place", "colour") and self._cycling(new):
+            self._explore_until = t + self.p.cycle_explore
+        if self.t < self._explore_until:
+            self.mode, self.current = "explore", None
+            return
         self._choose()
+
+    def _cycling(self, place: int) -> bool:
+        """Habituation: has ``place`` been entered too often lately while a drive is active?"""
+        v = self._visits
+        v.append((self.t, place))
+        while v and v[0][0] < self.t - self.p.cycle_window:
+            v.popleft()
+        active = any(self.drives.level(n) >= self.p.planner.exploration_threshold
+                     for n in self.drives.names)
+        return active and sum(1 for _, s in v if s == place) >= self.p.cycle_visits
 
     def _choose(self, state: int | None = None, *, exclude_wait: bool = False) -> None:
         """Pick the transition to execute from ``state`` (default: the current one)."""
@@ -364,10 +395,19 @@ class Agent:
                 self.mode = "move" if keep_heading else "explore"
                 return
             tr = moves[int(self.rng.integers(len(moves)))]
-        elif tr not in out:  # the planner's pick was a wait we must not take now
-            vals = [self._activity(t) for t in out]
-            tr = out[int(np.argmax(vals))] if max(vals) > 0 else \
-                out[int(self.rng.integers(len(out)))]
+        else:
+            # motor continuity: a place can stand for two distant stretches of track (aliasing);
+            # a move that would turn the robot around is discounted, so the robot keeps to the
+            # stretch it is on rather than to the alias of it
+            vals = np.array([self._activity(t) for t in out])
+            if keep_heading:
+                for i, t in enumerate(out):
+                    a = self.graph.action(t)
+                    if not a.is_wait and abs(wrap_angle(a.heading - self.pi.heading)) > 1.75:
+                        vals[i] *= self.p.turn_discount
+            if tr not in out or vals[out.index(tr)] < vals.max():
+                tr = out[int(np.argmax(vals))] if vals.max() > 0 else \
+                    out[int(self.rng.integers(len(out)))]
         self.current, self.current_since = tr, self.t
         action = self.graph.action(tr)
         if not action.is_wait:
