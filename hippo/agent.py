@@ -252,9 +252,14 @@ class Agent:
         self.non_occurrence: list[Transition] = []
         self.readouts: dict = {}
 
-    def lifted(self) -> None:
-        """The robot was picked up and put down elsewhere (same heading): no transition spans
-        the jump, and the state competition starts afresh (the place cells keep their memory)."""
+    def lifted(self, heading_change: float = 0.0) -> None:
+        """The robot was picked up and put down elsewhere: no transition spans the jump, and
+        the state competition starts afresh (the place cells keep their memory).
+
+        ``heading_change`` (rad) is how much the robot was turned while carried; the heading
+        estimate follows it (a robot's compass or head-direction system, not its place cells).
+        """
+        self.pi.heading = wrap_angle(self.pi.heading + heading_change)
         self.layer.reset(keep_states=True)
         self.nonocc.reset()
         for d in list(self._inhibited):

@@ -37,10 +37,13 @@ from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
 from hippo.perception.states import StateLayerParams
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
-from hippo.sim import WallFollower, WallFollowerParams, World, arenas
+from hippo.sim import WallFollower, WallFollowerParams, World, arenas, wrap_angle
 from hippo.sim.arena import Arena
 
 PHASES = ("exploration", "teaching", "rewarded", "extinction")
+START_NAMES = ("south", "east", "north", "west")
+#: counter-clockwise along each corridor: the way the wall follower explored goal_arena()
+START_HEADINGS = {"south": 0.0, "east": math.pi / 2, "north": math.pi, "west": -math.pi / 2}
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -57,6 +60,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--places", type=int, default=32,
                         help="place prototypes read out from the ICA units (learned cells)")
     parser.add_argument("--trial-timeout", type=float, default=240.0, help="s per trial")
+    parser.add_argument("--start-facing", choices=["explored", "kept"], default="explored",
+                        help="trials start facing along the corridor in the direction the robot "
+                             "explored (its place cells are direction-specific), or with the "
+                             "heading it had when picked up")
 
 
 @dataclass
@@ -235,16 +242,17 @@ def run(args: argparse.Namespace) -> dict:
             bar.update()
 
     # 3-4. rewarded and extinction trials from varied start places
-    starts = [arena.landmarks[f"start-{n}"] for n in ("south", "east", "north", "west")]
     results = []
     n_total = n_trials + n_ext
     with Progress(n_total, "trials") as bar:
         for k in range(n_total):
             rewarded = k < n_trials
             phase = 2 if rewarded else 3
-            sx, sy = starts[k % len(starts)]
-            world.place_robot(sx, sy, obs.pose[2], event="trial_start")
-            agent.lifted()
+            name = START_NAMES[k % len(START_NAMES)]
+            sx, sy = arena.landmarks[f"start-{name}"]
+            heading = START_HEADINGS[name] if args.start_facing == "explored" else obs.pose[2]
+            world.place_robot(sx, sy, heading, event="trial_start")
+            agent.lifted(heading_change=wrap_angle(heading - obs.pose[2]))
             agent.drives.set_level("sound", max(agent.drives.level("sound"), 0.6))
             exp.rewarding, exp.sounded, exp.still_since = rewarded, False, None
             obs = world.step((0.0, 0.0))
@@ -298,6 +306,7 @@ def run(args: argparse.Namespace) -> dict:
               if r.get("success") and "path_cm" in r and r["shortest_cm"] > 0]
     metrics = {
         "place_cells": args.place_cells, "seed": seed, "delay_s": args.delay,
+        "start_facing": args.start_facing,
         "quick": quick, "explore_min": explore_min, "place_units": places.n_units,
         "rewarded_trials": len(rew),
         "rewarded_successes": int(sum(bool(r.get("success")) for r in rew)),
