@@ -4,6 +4,9 @@
 * :class:`SFA` — linear (or quadratic) slow feature analysis with a whitening cutoff.
 * :class:`FastICA` — cube-nonlinearity FastICA with restarts scored without labels.
 * :class:`RCSFAICA` — the three layers as one estimator: ``fit`` / ``transform`` / ``step``.
+* :class:`PlacePrototypes` — radial-basis place cells over the RC-SFA-ICA population vector.
+* :class:`StateLayer` — the multimodal winner-take-all state layer (places, colour, sound,
+  proprioception) with hysteresis.
 * :mod:`hippo.perception.metrics` — place fields, localization, decoding, recovery time.
 """
 
@@ -15,9 +18,11 @@ from hippo.perception.place_cells import (
     RCSFAICAParams,
     fit_leak_sweep,
 )
+from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
 from hippo.perception.resample import Decimator
 from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
 from hippo.perception.sfa import SFA, SFAParams
+from hippo.perception.states import StateEvent, StateKey, StateLayer, StateLayerParams
 
 __all__ = [
     "ICANN09",
@@ -28,10 +33,16 @@ __all__ = [
     "FastICA",
     "ICAConvergenceWarning",
     "ICAParams",
+    "PlacePrototypes",
+    "PrototypeParams",
     "RCSFAICAParams",
     "Reservoir",
     "ReservoirParams",
     "SFAParams",
+    "StateEvent",
+    "StateKey",
+    "StateLayer",
+    "StateLayerParams",
     "expand_leak",
     "fit_leak_sweep",
 ]
