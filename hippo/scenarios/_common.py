@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import math
 import sys
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from hippo.io import save_json
 
@@ -23,3 +26,17 @@ def write_metrics(out: Path, metrics: dict[str, Any], *, announce: bool = True) 
         print(f"results written to {Path(out).resolve()} (metrics.json, figures, run.npz)",
               file=sys.stderr)
     return path
+
+
+def sfa_cutoff(text: str) -> float | str:
+    """Parse ``--sfa-cutoff``: a number, or ``auto``."""
+    return text if text == "auto" else float(text)
+
+
+def mean_sd(values: list[float]) -> tuple[float, float]:
+    """Mean and sample sd over seeds of the finite values (sd 0 for one value, nan for none)."""
+    v = np.asarray(values, dtype=float)
+    v = v[np.isfinite(v)]
+    if v.size == 0:
+        return math.nan, math.nan
+    return float(v.mean()), float(v.std(ddof=1)) if v.size > 1 else 0.0

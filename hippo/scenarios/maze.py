@@ -42,7 +42,7 @@ import numpy as np
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
 from hippo.progress import Progress
-from hippo.scenarios._common import prepare_out, write_metrics
+from hippo.scenarios._common import mean_sd, prepare_out, sfa_cutoff, write_metrics
 from hippo.sim import arenas
 from hippo.sim.record import record
 
@@ -71,10 +71,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--ablation", type=int, default=1, choices=[0, 1],
                         help="also fit the no-reservoir, quadratic-SFA ablation")
     parser.add_argument("--figures", type=int, default=1, choices=[0, 1], help="write PNGs")
-
-
-def _cutoff(text: str) -> float | str:
-    return text if text == "auto" else float(text)
 
 
 def _analyse(model: RCSFAICA, U: np.ndarray, labels: np.ndarray, n_train: int,
@@ -121,10 +117,8 @@ def _analyse(model: RCSFAICA, U: np.ndarray, labels: np.ndarray, n_train: int,
 
 
 def _stats(values: list[float]) -> dict[str, Any]:
-    v = np.asarray(values, dtype=float)
-    f = v[np.isfinite(v)]
-    return {"mean": float(f.mean()) if f.size else float("nan"),
-            "sd": float(f.std(ddof=1)) if f.size > 1 else 0.0, "per_seed": v.tolist()}
+    mean, sd = mean_sd(values)
+    return {"mean": mean, "sd": sd, "per_seed": [float(v) for v in values]}
 
 
 def run(args: argparse.Namespace) -> dict:
@@ -147,7 +141,7 @@ def run(args: argparse.Namespace) -> dict:
 
     common = dict(n_inputs=U.shape[1], downsample=f, n_sfa=units, n_ica=units,
                   ica_restarts=restarts, ica_score=args.ica_score,
-                  sfa_cutoff=_cutoff(args.sfa_cutoff))
+                  sfa_cutoff=sfa_cutoff(args.sfa_cutoff))
     variants: dict[str, list[dict[str, Any]]] = {"rc_sfa_ica": [], "no_reservoir_quadratic": []}
     keep: dict[str, dict[str, Any]] = {}
     fit_s: dict[str, list[float]] = {k: [] for k in variants}

@@ -24,7 +24,7 @@ import numpy as np
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
 from hippo.progress import Progress
-from hippo.scenarios._common import prepare_out, write_metrics
+from hippo.scenarios._common import mean_sd, prepare_out, sfa_cutoff, write_metrics
 from hippo.sim import arenas
 from hippo.sim.record import Recording, record
 
@@ -52,10 +52,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--hold", type=int, default=5,
                         help="recovered = right for this many consecutive ticks")
     parser.add_argument("--figures", type=int, default=1, choices=[0, 1], help="write PNGs")
-
-
-def _cutoff(text: str) -> float | str:
-    return text if text == "auto" else float(text)
 
 
 def _other_room_pose(arena, room: str, rng: np.random.Generator) -> tuple[float, float, float]:
@@ -155,12 +151,6 @@ def _room_masks(rec: Recording) -> dict[str, np.ndarray]:
             "corridor": reg == "corridor"}
 
 
-def _stats(values: list[float]) -> tuple[float, float]:
-    v = np.asarray(values, dtype=float)
-    v = v[np.isfinite(v)]
-    if v.size == 0:
-        return float("nan"), float("nan")
-    return float(v.mean()), float(v.std(ddof=1)) if v.size > 1 else 0.0
 
 
 def run(args: argparse.Namespace) -> dict:
@@ -189,7 +179,7 @@ def run(args: argparse.Namespace) -> dict:
                 model = RCSFAICA.smc09(n_reservoir=neurons, leak=leak, seed=args.seed + i,
                                        n_sfa=args.n_sfa, n_ica=args.n_ica,
                                        ica_restarts=restarts, ica_score=args.ica_score,
-                                       sfa_cutoff=_cutoff(args.sfa_cutoff))
+                                       sfa_cutoff=sfa_cutoff(args.sfa_cutoff))
                 t1 = time.perf_counter()
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore", ICAConvergenceWarning)
@@ -207,7 +197,7 @@ def run(args: argparse.Namespace) -> dict:
 
     def summary(name: str, key: str) -> dict[str, Any]:
         vals = [r[key] for r in per[name]]
-        mean, sd = _stats(vals)
+        mean, sd = mean_sd(vals)
         return {"mean": mean, "sd": sd, "per_seed": vals}
 
     paper_room = summary("paper", "room_cell_test_balanced_accuracy")
