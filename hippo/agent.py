@@ -82,6 +82,8 @@ class PlaceSource(Protocol):
 
     def reset(self) -> None: ...
 
+    def prime(self, sensors: np.ndarray) -> None: ...
+
 
 class LearnedPlaceCells:
     """Place cells learned by RC-SFA-ICA from the robot's own distance sensors (the default).
@@ -109,6 +111,18 @@ class LearnedPlaceCells:
     def reset(self) -> None:
         self.model.reset_state()
 
+    def prime(self, sensors: np.ndarray) -> None:
+        """Start the online loop from the state of a robot that has been sensing: reset, then
+        run the reservoir through recent readings ``sensors`` (T, n_inputs). A zero reservoir
+        state is far from where the robot's inputs hold it, and the slow features amplify it:
+        measured on the patrol course, the ICA outputs then stay off their training range (and
+        every prototype silent) for about 100 s."""
+        self.model.reset_state()
+        for u in np.asarray(sensors, dtype=float):
+            y = self.model.step(u)
+        if self.prototypes is not None and len(sensors):
+            self.prototypes.transform(y)  # validates; prototypes hold no state
+
 
 class GroundTruthPlaceCells:
     """Gaussian place fields on the true position — only to measure what perception costs.
@@ -131,6 +145,9 @@ class GroundTruthPlaceCells:
 
     def reset(self) -> None:
         pass
+
+    def prime(self, sensors: np.ndarray) -> None:
+        """Nothing to prime: the fields read the true position."""
 
 
 @dataclass(frozen=True)
@@ -155,6 +172,14 @@ class AgentParams:
         ``cycle_visits`` times within ``cycle_window`` s while a drive is active means the map
         is leading the robot in circles (noisy place states can make transitions point back
         and forth); it then explores for ``cycle_explore`` s.
+    coactive: soft recognition of a wanted stop's place: while moving with an active drive
+        whose stop is bound to place ``C``, the robot approaches that stop once ``C``'s activity
+        reaches this fraction of the most active place's, as if it had entered ``C`` (0
+        disables). Learned place cells split a stretch of track between prototypes that
+        alternate from lap to lap; the taught one need not win on every pass.
+    wall_tolerance: a move goes along the followed wall (the exploration's own motion, so the
+        place cells see what they were trained on) while the move's heading is within this
+        many radians of the robot's; beyond it the robot steers to the heading.
     """
 
     dt: float = 0.2
@@ -171,6 +196,8 @@ class AgentParams:
     cycle_visits: int = 3
     cycle_window: float = 60.0
     cycle_explore: float = 20.0
+    coactive: float = 0.6
+    wall_tolerance: float = 2.0
     states: StateLayerParams = field(default_factory=StateLayerParams)
     spectral: SpectralParams = field(default_factory=SpectralParams)
     #: latency 0.4 s = one tick from decision to motion + one tick of proprioceptive debounce
@@ -187,6 +214,9 @@ class AgentParams:
         if self.proprio_ticks < 1:
             raise ValueError(f"proprio_ticks must be >= 1, got {self.proprio_ticks}")
         check_positive("settle_time", self.settle_time, allow_zero=True)
+        check_positive("wall_tolerance", self.wall_tolerance)
+        if not 0.0 <= self.coactive <= 1.0:
+            raise ValueError(f"coactive must lie in [0, 1], got {self.coactive}")
         if not 0.0 <= self.explore_rho <= 1.0:
             raise ValueError(f"explore_rho must lie in [0, 1], got {self.explore_rho}")
 
@@ -223,6 +253,7 @@ class Agent:
                                      sensors=self.sensors, robot=self.robot,
                                      rng=np.random.default_rng([seed, 8]))
         self.steer = WallGuidedHeading(sensors=self.sensors, robot=self.robot,
+                                       tolerance=self.p.wall_tolerance,
                                        speed=self.p.speed, rng=np.random.default_rng([seed, 9]))
         self.avoid = ObstacleAvoidance(sensors=self.sensors, robot=self.robot)
         self.pi = PathIntegrator()
@@ -234,11 +265,14 @@ class Agent:
         self._unstick_until = -math.inf
         self._visits: deque[tuple[float, int]] = deque()
         self._explore_until = -math.inf
+        self._clear_view: np.ndarray | None = None
         self._reset_episode()
 
     # -- episode bookkeeping ------------------------------------------------------------------
     def _reset_episode(self) -> None:
         self.state: int | None = None
+        self._entries: dict[int, tuple[float, tuple[float, float, float]]] = {}
+        self._approach_t0 = self.t
         self.entered_at = self.t
         self._entry_pose = self.pi.pose
         self.current: Transition | None = None
@@ -288,7 +322,17 @@ class Agent:
             raise ValueError(f"expected {self.sensors.n} sensor readings, got shape {ir.shape}")
         self.t = float(obs.t)
         self.pi.step(obs.odometry)
-        acts = self.places.step(obs)
+        if self.avoid.boxed_in(obs) and self._clear_view is not None:
+            # occluded: something is pressed against the robot (the teacher's block) and its
+            # distance sensors see only that. They say nothing about the place, and feeding
+            # them to the reservoir would corrupt its memory for minutes; the place cells keep
+            # hearing the last clear view, as during any stop
+            view = Observation(obs.t, obs.tick, self._clear_view, obs.floor, obs.sound,
+                               obs.odometry, obs.moving, obs.pose, obs.speed)
+            acts = self.places.step(view)
+        else:
+            self._clear_view = ir
+            acts = self.places.step(obs)
         turning = abs(float(obs.odometry[2])) > p.still_turn * p.dt
         moving = bool(obs.moving or turning)
         if moving != self._moving:
@@ -307,9 +351,11 @@ class Agent:
             return self.explorer.act(obs)
         if self.state is None:  # (re)start: take the winner as it is, no transition
             self.state, self.entered_at, self._entry_pose = ev.winner, self.t, self.pi.pose
+            self._entries[ev.winner] = (self.t, self.pi.pose)
             self._choose()
         elif ev.changed:
             self._on_event(ev.winner)
+        self._recognise_stop()
         self._check_wait()
         self.drives.step(p.dt)
         return self._motor(obs)
@@ -319,9 +365,26 @@ class Agent:
         kind = self.layer.key(new).kind
         if kind == "moving" and (prev is None or self.layer.key(prev).kind != "still"):
             prev = None  # "moving" without a stop before it (e.g. after being lifted): no event
+        entered_at, entry_pose = self.entered_at, self._entry_pose
+        ctx = self.layer.key(new).context
+        if (kind == "still" and prev is not None and ctx is not None and ctx != prev
+                and self.layer.key(prev).kind == "place" and ctx in self._entries
+                and t - entered_at < self.p.states.context_time):
+            # the place that won just before the stop did not hold long enough to be its
+            # context (state layer ``context_time``): the stop is bound to the place before,
+            # and so is the transition into it (timed from entering that place)
+            prev = ctx
+            entered_at, entry_pose = self._entries[ctx]
+        intended = (kind == "still" and self._waiting_on is not None
+                    and self._waiting_on[1] == new and self.mode == "wait")
+        if intended and prev is not None and self._waiting_on[0] != prev:  # type: ignore[index]
+            # the robot stopped for a stop it recognised softly while another place won:
+            # what it did is that transition, timed from the recognition
+            prev = self._waiting_on[0]  # type: ignore[index]
+            entered_at = self._approach_t0
         if prev is not None:
-            delay = t - self.entered_at
-            x0, y0, _ = self._entry_pose
+            delay = t - entered_at
+            x0, y0, _ = entry_pose
             x1, y1, _ = self.pi.pose
             wait = self.layer.key(new).kind in ("still", "sound") or \
                 self.layer.key(prev).kind == "still"
@@ -336,15 +399,25 @@ class Agent:
             for d in self._pending_rewards:
                 self.drives.reward(d, tr)
             self._pending_rewards.clear()
-        # drives inhibited by a finished wait are released once the robot reaches another place
+        # drives inhibited by a finished wait are released once the robot reaches a place from
+        # which that stop is not one transition away (it has left the checkpoint's region)
         if kind in ("place", "colour"):
-            for d, ctx in list(self._inhibited.items()):
-                if ctx != new:
+            for d, c in list(self._inhibited.items()):
+                if c != new and not self._stops_at(new, c):
                     self.drives.release(d)
                     del self._inhibited[d]
+        approaching = self.mode == "approach" and self.current is not None
         self.state = new
         self.entered_at = t
         self._entry_pose = self.pi.pose
+        if kind in ("place", "colour"):
+            self._entries[new] = (t, self.pi.pose)
+            if (approaching and kind == "place" and new != self.current[0]  # type: ignore[index]
+                    and not self._stops_at(new, self.layer.key(
+                        self.current[1]).context)):  # type: ignore[index]
+                # on the way to a stop recognised softly (``coactive``): a place on the way
+                # that does not know the stop does not cancel it
+                return
         if kind == "moving":
             # resuming: keep the move chosen when the wait ended, else choose from the context
             if self.mode != "move" or self.current is None:
@@ -359,6 +432,50 @@ class Agent:
             self.mode, self.current = "explore", None
             return
         self._choose()
+
+    def _recognise_stop(self) -> None:
+        """Soft recognition of a wanted stop's place (``coactive``).
+
+        Learned place cells often split one stretch of track between two prototypes that
+        alternate from lap to lap; the place a stop was taught in then does not win on every
+        pass. While moving with an active drive whose stop is bound to place ``C``, the robot
+        approaches that stop when ``C``'s activity is close to the winner's (``coactive`` ×
+        the most active place), as it would on entering ``C``."""
+        p = self.p
+        if p.coactive <= 0 or self.mode != "move" or self.state is None:
+            return
+        acts = self.layer.place_activity
+        if acts.size == 0:
+            return
+        top = float(acts.max())
+        for name in self.drives.names:
+            if (self.drives.is_inhibited(name)
+                    or self.drives.level(name) < p.planner.exploration_threshold):
+                continue
+            for a, _ in self.drives.links(name):
+                ka = self.layer.key(a)
+                c = ka.context
+                if ka.kind != "still" or c is None or c == self.state:
+                    continue
+                kc = self.layer.key(c)
+                if kc.kind != "place" or kc.index >= acts.size:  # type: ignore[operator]
+                    continue
+                if (float(acts[kc.index]) < p.coactive * top  # type: ignore[index]
+                        or not self.graph.has_state(c) or (c, a) not in self.graph):
+                    continue
+                self.current, self.current_since = (c, a), self.t
+                self.mode, self._approach_t0 = "approach", self.t
+                return
+
+    def _stops_at(self, state: int, ctx: int | None) -> bool:
+        """Is a stop in context ``ctx`` one transition away from ``state``?"""
+        if ctx is None or not self.graph.has_state(state):
+            return False
+        for _, b in self.graph.outgoing(state):
+            k = self.layer.key(b)
+            if k.kind == "still" and k.context == ctx:
+                return True
+        return False
 
     def _cycling(self, place: int) -> bool:
         """Habituation: has ``place`` been entered too often lately while a drive is active?"""
@@ -418,8 +535,9 @@ class Agent:
         if not action.is_wait:
             self.mode = "move"
             self._heading = float(action.heading)  # type: ignore[arg-type]
-        elif self.layer.key(tr[1]).kind == "still" and self.p.approach and keep_heading:
+        elif self.layer.key(tr[1]).kind == "still" and self.p.approach:
             self.mode = "approach"   # keep going until the learned time-to-stop is over
+            self._approach_t0 = self.entered_at
         else:
             self.mode = "wait"
             self._waiting_on = tr
@@ -435,11 +553,23 @@ class Agent:
         if self.mode == "approach":
             # stop when the learned time-to-stop is over, or before the robot would usually
             # have left the place (the timed prediction of the moves out of it)
-            leaving = any(r.elapsed_fraction >= 0.8 for k, r in self.readouts.items()
-                          if k != self.current and r.strength >= self.p.transitions.min_strength
-                          and self.layer.key(k[1]).kind in ("place", "colour"))
-            if (ro is None or ro.delay_over or leaving
-                    or ro.strength < self.p.transitions.min_strength):
+            here = self.current[0] == self.state
+            leaving = here and any(
+                r.elapsed_fraction >= 0.8 for k, r in self.readouts.items()
+                if k != self.current and r.strength >= self.p.transitions.min_strength
+                and self.layer.key(k[1]).kind in ("place", "colour"))
+            if here and ro is not None and ro.strength >= self.p.transitions.min_strength:
+                over = ro.delay_over
+            else:
+                # a stop recognised softly, or bound to this place over a brief one: timed by
+                # the map's delay since the place was recognised
+                delay = self.graph.delay(self.current)
+                lead = self.p.transitions.latency + 0.5 * self.p.dt
+                over = delay is None or self.t - self._approach_t0 >= float(delay) - lead
+            if over or leaving:
+                ctx = self.layer.key(self.current[1]).context
+                if ctx is not None:
+                    self.layer.bind_context(ctx)  # it stops *for* this place
                 self.mode, self._waiting_on = "wait", self.current
             return
         if self.mode != "wait" or self._waiting_on is None:

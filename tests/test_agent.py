@@ -5,8 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from hippo.agent import Agent, AgentParams, GroundTruthPlaceCells
-from hippo.cognitive_map import DriveParams
+from hippo.agent import Agent, AgentParams, GroundTruthPlaceCells, LearnedPlaceCells
+from hippo.cognitive_map import Action, DriveParams
+from hippo.perception.place_cells import RCSFAICA
 from hippo.sim import ArenaBuilder, World, arenas
 
 
@@ -97,6 +98,10 @@ def test_bad_input_is_refused():
         agent.reward("thirst")
     with pytest.raises(ValueError, match="settle_time"):
         AgentParams(settle_time=-1)
+    with pytest.raises(ValueError, match="coactive"):
+        AgentParams(coactive=1.5)
+    with pytest.raises(ValueError, match="wall_tolerance"):
+        AgentParams(wall_tolerance=0.0)
     with pytest.raises(ValueError, match="centre"):
         GroundTruthPlaceCells(np.zeros((0, 2)))
 
@@ -117,3 +122,99 @@ def test_same_seed_same_run():
     b, nb = run(3)
     np.testing.assert_array_equal(a, b)
     assert na == nb
+
+
+class _Recorder:
+    """A place source that records the sensor readings it is given."""
+
+    kind = "stub"
+    n_units = 2
+
+    def __init__(self) -> None:
+        self.seen: list[np.ndarray] = []
+
+    def step(self, obs):
+        self.seen.append(np.array(obs.ir))
+        return np.array([1.0, 0.0])
+
+    def reset(self) -> None:
+        pass
+
+    def prime(self, sensors) -> None:
+        pass
+
+
+def test_occluded_sensors_are_not_fed_to_the_place_cells():
+    """While the teacher's block covers every sensor, the place cells hear the last clear
+    view (as during any stop), not the block."""
+    _arena, world = corridor_world()
+    places = _Recorder()
+    agent = Agent(places, sensors=world.sensors, robot=world.robot, seed=0)
+    obs = world.reset(0)
+    for _ in range(30):
+        obs = world.step(agent.step(obs))
+    clear = places.seen[-1].copy()  # the last view the agent had
+    world.teacher.block(3.0)
+    obs = world.step((0.0, 0.0))
+    assert agent.avoid.boxed_in(obs)
+    for _ in range(5):
+        obs = world.step(agent.step(obs))
+    np.testing.assert_array_equal(places.seen[-1], clear)
+    assert not np.array_equal(obs.ir, clear)
+    while world.teacher.blocking:
+        obs = world.step(agent.step(obs))
+    assert not agent.avoid.boxed_in(obs)
+    agent.step(obs)  # the view is clear again: the place cells get it
+    np.testing.assert_array_equal(places.seen[-1], obs.ir)
+
+
+def test_prime_continues_from_the_sensed_history():
+    """``prime(U)`` leaves the online reservoir where stepping through ``U`` from rest does."""
+    rng = np.random.default_rng(0)
+    U = rng.uniform(0, 1, (400, 8))
+    model = RCSFAICA(n_reservoir=50, n_sfa=3, n_ica=3, seed=1, ica_restarts=1).fit(U)
+    a = LearnedPlaceCells(model)
+    a.prime(U[:300])
+    first = model.step(U[300])
+    model.reset_state()
+    for u in U[:300]:
+        model.step(u)
+    b = model.step(U[300])
+    np.testing.assert_allclose(first, b)
+    # a different history gives a different state
+    a.prime(U[100:300])
+    assert not np.allclose(model.step(U[300]), b)
+
+
+def test_a_wanted_stop_is_recognised_from_a_coactive_place():
+    """The drive of a stop bound to place C makes the robot approach it when C is almost as
+    active as the winner (learned place cells alternate between neighbouring prototypes)."""
+    _arena, world = corridor_world()
+    agent = Agent(_Recorder(), drives={"cp": DriveParams()}, sensors=world.sensors,
+                  robot=world.robot, seed=0, params=AgentParams(coactive=0.6))
+    layer, graph = agent.layer, agent.graph
+    q, c = layer.recruit("place", 0), layer.recruit("place", 1)
+    still, moving = layer.recruit("still", None, c), layer.recruit("moving", None, c)
+    graph.add_transition(q, c, Action.move(0.0, 20.0), 4.0)
+    graph.add_transition(c, still, Action.wait(), 3.0)
+    graph.add_transition(still, moving, Action.wait(), 10.0)
+    agent.drives.reward("cp", (still, moving))
+    agent.drives.set_level("cp", 1.0)
+    agent.state, agent.mode, agent.current = q, "move", (q, c)
+
+    layer.place_activity = np.array([0.9, 0.4])   # C well below the winner: keep moving
+    agent._recognise_stop()
+    assert agent.mode == "move" and agent.current == (q, c)
+    layer.place_activity = np.array([0.9, 0.6])   # C at 2/3 of the winner: approach its stop
+    agent._recognise_stop()
+    assert agent.mode == "approach" and agent.current == (c, still)
+    # an inhibited drive (its wait just ended) does not start the approach again
+    agent.mode, agent.current = "move", (q, c)
+    agent.drives.inhibit("cp")
+    agent._recognise_stop()
+    assert agent.mode == "move"
+    # and coactive = 0 disables the rule
+    agent.drives.release("cp")
+    agent.p = AgentParams(coactive=0.0)
+    agent._recognise_stop()
+    assert agent.mode == "move"

@@ -6,6 +6,7 @@ Public API
   recruitment threshold, which event states are conjunctive or transient.
 - :class:`StateLayer` — ``step(place, *, colour, sound, moving, dt) -> StateEvent``;
   ``reset(keep_states=False)``; ``recruit(kind, index, context) -> id``;
+  ``bind_context(id)`` (the context of the next conjunctive events);
   ``find(kind, index, context) -> id``; ``key(id) -> StateKey``; ``describe(id) -> str``;
   ``states`` (all keys, index = state id); ``winner``; ``t``; ``place_activity``.
 - :class:`StateEvent` — one tick's outcome: ``winner`` (int state id), ``changed`` (a sensory
@@ -99,6 +100,11 @@ class StateLayerParams:
     conjunctive: event kinds bound to the current context (default ``("still", "moving")``).
     transient: event kinds whose activity falls to 0 ``transient_time`` after onset
         (default ``("moving",)``, ``transient_time`` 1.0 s).
+    context_time: a place becomes the context of conjunctive events only once it has held
+        the win this long (s; default 0: at once). A place that wins only briefly before the
+        robot stops (noisy learned place cells between two fields, or the obstacle that stopped
+        the robot seen by its distance sensors) is then not what the stop is bound to: the
+        place before it is. Colours bind at once (a floor colour is not noisy).
     """
 
     margin: float = 0.15
@@ -113,6 +119,7 @@ class StateLayerParams:
     conjunctive: tuple[str, ...] = ("still", "moving")
     transient: tuple[str, ...] = ("moving",)
     transient_time: float = 1.0
+    context_time: float = 0.0
 
     def __post_init__(self) -> None:
         check_range("margin", self.margin, 0.0, 1.0)
@@ -132,6 +139,7 @@ class StateLayerParams:
                 raise ValueError(f"{name} lists unknown event kind(s) {bad}; "
                                  f"choose from {EVENT_KINDS}")
         check_positive("transient_time", self.transient_time)
+        check_positive("context_time", self.context_time, allow_zero=True)
 
 
 @dataclass(frozen=True)
@@ -218,6 +226,7 @@ class StateLayer:
         self.winner: int | None = None
         self.since = 0.0
         self._context: int | None = None
+        self._candidate: int | None = None   # a place winning, not yet held context_time
         self._prev_sound = False
         self._prev_colour: int | None = None
         self._prev_moving: bool | None = None
@@ -233,6 +242,17 @@ class StateLayer:
             self._add_places(key.index + 1 - self._place_ids.size)  # type: ignore[operator]
             return self._ids[key]
         return self._register(key)
+
+    def bind_context(self, state: int) -> None:
+        """Make ``state`` (a place or colour) the context of the next conjunctive events.
+
+        For an agent that stops on purpose: it stops *for* a place it planned to reach, and
+        the stop is bound to that place even when noisy place cells crown another one at the
+        moment it stops (top-down: the expectation names the state)."""
+        if self.key(state).kind not in _CONTEXT_KINDS:
+            raise ValueError(f"only a place or colour can be a context, got "
+                             f"{self.describe(state)}")
+        self._context, self._candidate = int(state), None
 
     def find(self, kind: str, index: int | None = None, context: int | None = None) -> int:
         """Id of an existing state; ``ValueError`` if it was never seen."""
@@ -371,6 +391,9 @@ class StateLayer:
         self.place_activity = pa
         p = self.params
 
+        if (self._candidate is not None and self._candidate == self.winner
+                and self.t - self.since >= p.context_time - 1e-9):
+            self._context, self._candidate = self._candidate, None
         onsets: list[str] = []
         if snd and not self._prev_sound:
             onsets.append("sound")
@@ -436,8 +459,14 @@ class StateLayer:
             previous, self.winner, self.since = self.winner, new, self.t
             self._evidence[:] = 0.0
             self._onset_t[new] = self.t
-            if self._keys[new].kind in _CONTEXT_KINDS:
-                self._context = new
+            kind = self._keys[new].kind
+            if kind == "colour" or (kind == "place" and (p.context_time <= 0
+                                                         or self._context is None)):
+                self._context, self._candidate = new, None
+            elif kind == "place":
+                self._candidate = new   # becomes the context once it has held the win
+            else:
+                self._candidate = None  # an event state took over: the candidate never held
         self.activity = {int(s): float(v) for s, v in zip(self._place_ids, pa)}
         if self._keys[self.winner].kind != "place":
             self.activity[self.winner] = self._event_level(self.winner, snd, col, mov)

@@ -41,6 +41,8 @@ from hippo.sim import WallFollower, WallFollowerParams, World, arenas, wrap_angl
 from hippo.sim.arena import Arena
 
 PHASES = ("exploration", "teaching", "rewarded", "extinction")
+#: probability per exploration tick of a pause (2-30 s): about one pause a minute
+PAUSE_RATE = 0.003
 START_NAMES = ("south", "east", "north", "west")
 #: counter-clockwise along each corridor: the way the wall follower explored goal_arena()
 START_HEADINGS = {"south": 0.0, "east": math.pi / 2, "north": math.pi, "west": -math.pi / 2}
@@ -118,15 +120,29 @@ class Log:
         return arrays
 
 
-def explore(world: World, ticks: int, rho: float, seed: int, log: Log, desc: str) -> list:
-    """Drive the robot with the wall follower; return the observations."""
+def explore(world: World, ticks: int, rho: float, seed: int, log: Log, desc: str,
+            pause_rate: float = PAUSE_RATE) -> list:
+    """Drive the robot with the wall follower, pausing now and then; return the observations.
+
+    With probability ``pause_rate`` per tick the robot stands still for 2-30 s (uniform). A
+    robot that will wait at goals and checkpoints must have stood still while it learned its
+    place cells: the slow features then treat a stop as part of the place, not as a new
+    input (without pauses, a wait left the learned places off for the next minute)."""
     ctrl = WallFollower(WallFollowerParams(rho=rho), sensors=world.sensors, robot=world.robot,
                         rng=np.random.default_rng([seed, 3]))
+    rng = np.random.default_rng([seed, 4])
     obs = world._observe(np.zeros(3), 0.0, False)
     out = []
+    pause = 0
     with Progress(ticks, desc) as bar:
         for _ in range(ticks):
-            obs = world.step(ctrl.act(obs))
+            if pause > 0:
+                pause -= 1
+                obs = world.step((0.0, 0.0))
+            else:
+                if pause_rate > 0 and rng.random() < pause_rate:
+                    pause = int(rng.uniform(2.0, 30.0) / world.dt)
+                obs = world.step(ctrl.act(obs))
             out.append(obs)
             log.add(obs, None, 0, -1)
             bar.update()
@@ -137,10 +153,18 @@ def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: 
                 n_places: int = 32):
     """The place-cell source: RC-SFA-ICA fitted on the exploration (``units`` ICA units read
     out by ``n_places`` radial-basis prototypes over the ICA population vector), or ground
-    truth (Gaussian fields at the arena's labelled locations)."""
+    truth (Gaussian fields at the arena's labelled locations).
+
+    The reservoir is faster than SMC09's room detector (leaks 0.1 / 0.3 and spectral radius
+    0.9 instead of 0.05 / 0.15 and 0.99): its slowest mode then forgets in about 20 s instead
+    of several minutes, so what the closed loop does to the sensors (a leash off the explored
+    line, a block, a wait) fades within a corridor. Measured over seeds 0-9: the patrol stops
+    at 87 % of checkpoint passes instead of 74 %, place preference succeeds in 119 of 120
+    rewarded trials instead of 116.
+    """
     if kind == "ground-truth":
         return GroundTruthPlaceCells(arena.locations, sigma=8.0)
-    model = RCSFAICA(n_reservoir=400, leak=(0.05, 0.15), spectral_radius=0.99, n_sfa=units,
+    model = RCSFAICA(n_reservoir=400, leak=(0.1, 0.3), spectral_radius=0.9, n_sfa=units,
                      n_ica=units, ica_restarts=3, seed=seed)
     Y = model.fit_transform(sensors)
     protos = PlacePrototypes(PrototypeParams(n_prototypes=n_places, seed=seed)).fit(Y)
@@ -149,7 +173,7 @@ def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: 
 
 
 #: state-layer settings for place activities in [0, 1] (prototypes, Gaussian fields)
-STATES = StateLayerParams(normalize="fixed", place_scale=0.5)
+STATES = StateLayerParams(normalize="fixed", place_scale=0.5, context_time=1.0)
 
 
 def run_agent(world: World, agent: Agent, obs, ticks: int, log: Log, phase: int, trial: int,

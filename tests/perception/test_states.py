@@ -193,3 +193,61 @@ def test_leaving_the_coloured_floor_hands_over_to_the_most_active_place():
     assert layer.key(colour) == ("colour", 2, None)
     ev = layer.step(weak, colour=0, moving=True, dt=0.2)
     assert ev.changed and layer.key(ev.winner).kind == "place"
+
+
+def _drive_to(layer, acts, ticks, moving=True):
+    ev = None
+    for _ in range(ticks):
+        ev = layer.step(np.asarray(acts, float), moving=moving, dt=DT)
+    return ev
+
+
+def test_a_brief_place_before_a_stop_is_not_its_context():
+    layer = StateLayer(StateLayerParams(context_time=1.0))
+    _drive_to(layer, [3.0, 0.0, 0.0], 10)
+    p0 = layer.find("place", 0)
+    # place 1 wins (after the hold time) and the robot stops 0.6 s later: still@place 0
+    ev = _drive_to(layer, [0.0, 3.0, 0.0], 4)
+    assert layer.describe(ev.winner) == "place 1" and ev.since == pytest.approx(ev.t)
+    _drive_to(layer, [0.0, 3.0, 0.0], 2)
+    ev = layer.step(np.array([0.0, 3.0, 0.0]), moving=False, dt=DT)
+    assert layer.key(ev.winner) == StateKey("still", None, p0)
+    # a place that has held the win for context_time is the context of the next stop
+    _drive_to(layer, [0.0, 0.0, 3.0], 2)            # moving@place 0, then place 2
+    ev = _drive_to(layer, [0.0, 0.0, 3.0], 12)
+    assert layer.describe(ev.winner) == "place 2"
+    ev = layer.step(np.array([0.0, 0.0, 3.0]), moving=False, dt=DT)
+    assert layer.describe(ev.winner) == "still@place 2"
+
+
+def test_without_context_time_the_latest_place_is_the_context():
+    layer = StateLayer()  # context_time 0: the default, HIREL's rule
+    _drive_to(layer, [3.0, 0.0], 10)
+    _drive_to(layer, [0.0, 3.0], 4)
+    ev = layer.step(np.array([0.0, 3.0]), moving=False, dt=DT)
+    assert layer.describe(ev.winner) == "still@place 1"
+
+
+def test_colour_binds_at_once_even_with_context_time():
+    layer = StateLayer(StateLayerParams(context_time=5.0))
+    _drive_to(layer, [3.0], 10)
+    layer.step(np.array([3.0]), colour=2, moving=True, dt=DT)
+    ev = layer.step(np.array([3.0]), colour=2, moving=False, dt=DT)
+    assert layer.describe(ev.winner) == "still@colour 2"
+
+
+def test_bind_context_names_the_next_stop():
+    layer = StateLayer(StateLayerParams(context_time=1.0))
+    _drive_to(layer, [3.0, 0.0], 10)
+    _drive_to(layer, [0.0, 3.0], 12)  # place 1 is now the context
+    p0, p1 = layer.find("place", 0), layer.find("place", 1)
+    layer.bind_context(p0)            # the agent stops *for* place 0
+    ev = layer.step(np.array([0.0, 3.0]), moving=False, dt=DT)
+    assert layer.key(ev.winner) == StateKey("still", None, p0)
+    with pytest.raises(ValueError, match="only a place or colour"):
+        layer.bind_context(ev.winner)
+    with pytest.raises(ValueError, match="unknown state id"):
+        layer.bind_context(99)
+    assert p1 != p0
+    with pytest.raises(ValueError, match="context_time"):
+        StateLayerParams(context_time=-1.0)

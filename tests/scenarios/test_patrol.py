@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from hippo.cli import run_scenario
+from hippo.scenarios.patrol import _passes
 
 
 def _waits_within(m, rel):
@@ -36,9 +37,10 @@ def test_learned_place_cells_patrol(tmp_path):
     assert m["place_cells"] == "learned"
     assert m["loop_completion"] == 1.0
     assert m["reproduced_loop_fraction"] >= 0.95
-    # with learned place cells not every checkpoint is recognised on every loop (aliasing);
-    # the waits that are made are timed by the same neural mechanism
-    assert m["checkpoint_stops_made"] >= 2
+    # with learned place cells not every checkpoint is recognised on every pass (measured over
+    # seeds 0-19 in full runs: 87 %); the waits that are made are timed by the same mechanism
+    assert m["checkpoint_stops_made"] >= 0.5 * m["checkpoint_stops_expected"]
+    assert m["checkpoint_stops_expected"] >= 6
     assert _waits_within(m, 0.03)
 
 
@@ -47,3 +49,16 @@ def test_bad_waits_are_refused(tmp_path):
         run_scenario("patrol", ["--quick", "--waits", "3,nan,5", "--out", str(tmp_path)])
     with pytest.raises(SystemExit):
         run_scenario("patrol", ["--quick", "--waits", "3,4", "--out", str(tmp_path)])
+
+
+def test_passes_by_a_checkpoint():
+    """Each pass within 30 cm counts once; runs at most ``gap`` ticks apart join; a pass under
+    way when the phase starts is not counted."""
+    x = np.array([0, 0, 0, 50, 50, 0, 50, 0, 0, 50, 50, 50, 50, 50, 50, 0, 0, 50], float)
+    phase = np.array([3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4])
+    arrays = {"x": x, "y": np.zeros_like(x), "phase": phase}
+    assert _passes(arrays, (0.0, 0.0), phase=4, gap=1) == [(5, 9), (15, 17)]
+    # a run that joins the pass under way at the phase start is skipped with it
+    assert _passes(arrays, (0.0, 0.0), phase=4, gap=2) == [(15, 17)]
+    assert _passes(arrays, (0.0, 0.0), phase=4, gap=0) == [(5, 6), (7, 9), (15, 17)]
+    assert _passes(arrays, (0.0, 0.0), phase=5) == []

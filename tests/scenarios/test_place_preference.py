@@ -67,3 +67,28 @@ def test_an_untuned_delay_is_learned(tmp_path):
 def test_bad_delay_is_refused(tmp_path):
     with pytest.raises(SystemExit, match="delay"):
         run_scenario("place-preference", ["--quick", "--delay", "-1", "--out", str(tmp_path)])
+
+
+def _still_runs(observations):
+    runs, n = [], 0
+    for o in observations:
+        if not o.moving:
+            n += 1
+        elif n:
+            runs.append(n)
+            n = 0
+    return runs + ([n] if n else [])
+
+
+def test_exploration_pauses_now_and_then():
+    from hippo.scenarios.place_preference import Log, explore
+    from hippo.sim import World, arenas
+
+    paused = explore(World(arenas.goal_arena(), seed=0), 3000, 0.0, 0, Log(), "x",
+                     pause_rate=0.003)
+    long = [r for r in _still_runs(paused) if r >= 10]
+    assert 3 <= len(long) <= 20            # about 9 expected in 3000 ticks
+    assert all(r <= 151 for r in long)     # at most 30 s each
+    steady = explore(World(arenas.goal_arena(), seed=0), 3000, 0.0, 0, Log(), "x",
+                     pause_rate=0.0)
+    assert not [r for r in _still_runs(steady) if r >= 10]
