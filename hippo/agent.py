@@ -626,4 +626,22 @@ class Agent:
             "prediction": 0.0 if ro is None else ro.prediction,
             "non_occurrence": bool(self.non_occurrence),
             "drives": [self.drives.level(n) for n in self.drives.names],
+            "wait_drive": self._wait_drive(),
         }
+
+    def _wait_drive(self) -> int:
+        """Index of the drive the robot is waiting or stopping for (-1: none)."""
+        cur = self._waiting_on if self.mode == "wait" else (
+            self.current if self.mode == "approach" else None)
+        if cur is None:
+            return -1
+        if self.layer.key(cur[1]).kind == "still":  # the stop itself: the wait after it
+            nxt = [t for t in self.graph.outgoing(cur[1]) if t in self.graph] \
+                if self.graph.has_state(cur[1]) else []
+        else:
+            nxt = [cur]
+        for i, name in enumerate(self.drives.names):
+            links = self.drives.links(name)
+            if any(t in links for t in nxt):
+                return i
+        return -1

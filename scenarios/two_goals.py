@@ -29,7 +29,14 @@ from hippo.agent import Agent, AgentParams
 from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.io import save_json, save_npz
 from hippo.plots.sim import draw_arena
-from hippo.scenarios.place_preference import STATES, Log, explore, make_places, run_agent
+from hippo.scenarios.place_preference import (
+    STATES,
+    Log,
+    explore,
+    learn_map,
+    make_places,
+    run_agent,
+)
 from hippo.sim import ArenaBuilder, World
 from hippo.sim.arena import Arena
 
@@ -87,8 +94,7 @@ def main(argv: list[str] | None = None) -> dict:
                          16 if args.quick else 24, args.seed)
     agent = Agent(places, drives=DRIVES, params=AgentParams(states=STATES, planner=PLANNER),
                   sensors=world.sensors, robot=world.robot, seed=args.seed)
-    for o in explored:
-        agent.step(o)
+    learn_map(agent, explored)
     obs = explored[-1]
 
     # 2. the lesson: leash into each zone, block there for its wait, reward its drive as it ends

@@ -76,7 +76,7 @@ class Log:
     cols: dict[str, list] = field(default_factory=lambda: {k: [] for k in (
         "t", "x", "y", "heading", "speed", "zone", "sound", "winner", "mode", "prediction",
         "non_occurrence", "sound_prediction", "sound_non_occurrence", "phase", "trial",
-        "drives")})
+        "drives", "wait_drive")})
 
     def add(self, obs, agent: Agent | None, phase: int, trial: int) -> None:
         c = self.cols
@@ -98,10 +98,11 @@ class Log:
             c["sound_prediction"].append(0.0)
             c["sound_non_occurrence"].append(False)
             c["drives"].append([0.0] * self.n_drives)
+            c["wait_drive"].append(-1)
         else:
             s = agent.snapshot()
             for k in ("winner", "mode", "prediction", "non_occurrence", "sound_prediction",
-                      "sound_non_occurrence", "drives"):
+                      "sound_non_occurrence", "drives", "wait_drive"):
                 c[k].append(s[k])
 
     def arrays(self) -> dict[str, np.ndarray]:
@@ -147,6 +148,22 @@ def explore(world: World, ticks: int, rho: float, seed: int, log: Log, desc: str
             log.add(obs, None, 0, -1)
             bar.update()
     return out
+
+
+def learn_map(agent: Agent, explored: list, desc: str = "map learning") -> None:
+    """Replay the exploration through ``agent``: it learns its states, their timed transitions
+    and the cognitive map from the robot's own run.
+
+    The exploration's pauses are left out (ticks where the robot neither moved nor turned):
+    they train the place cells on standing still, but a stop made for no reason is no event of
+    the task. Replayed, every pause would leave a wait in the map for the planner to route
+    through (measured: with --delay 3.3 the robot then stopped on its way at pause places and
+    reached the goal in 52 of 60 rewarded trials instead of 60)."""
+    with Progress(len(explored), desc) as bar:
+        for o in explored:
+            if o.moving or np.any(o.odometry):
+                agent.step(o)
+            bar.update()
 
 
 def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: int,
@@ -239,10 +256,7 @@ def run(args: argparse.Namespace) -> dict:
                          planner=PlannerParams(w=0.9, noise=0.01, exploration_threshold=0.3))
     agent = Agent(places, drives={"sound": drive}, params=params, sensors=world.sensors,
                   robot=world.robot, seed=seed)
-    with Progress(len(explored), "map learning") as bar:
-        for o in explored:
-            agent.step(o)
-            bar.update()
+    learn_map(agent, explored)
     obs = explored[-1]
 
     # 2. teaching: leash to the goal, block, sound after the delay
