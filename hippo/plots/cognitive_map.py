@@ -146,7 +146,7 @@ def plot_cognitive_map(graph: TransitionGraph, activity: Activity | Mapping[Tran
         ax.plot(pts_arr[:, 0], pts_arr[:, 1], "-", color="orange", lw=3, alpha=0.8, zorder=2.5,
                 label="plan")
 
-    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_aspect("equal", adjustable="box")
     ax.autoscale_view()
     ax.set_xlabel("x (cm)")
     ax.set_ylabel("y (cm)")

@@ -12,12 +12,19 @@ Phases (each with a progress bar):
    own drive.
 5. **patrol** — ``--loops`` loops alone: at each checkpoint the drive makes the robot stop, the
    learned delay ends the wait, and it moves on.
-6. **adaptation** — a longer block at checkpoint 1 and an early leash restart at checkpoint 2,
-   then one more loop: the waits follow.
+6. **adaptation** — the teacher holds the robot longer when it stops at checkpoint 1, and
+   restarts it early with the leash at checkpoint 2, then one more loop: the waits follow.
 7. **kidnap** — the robot is put down on the path and resumes toward a checkpoint.
 
-``run.npz`` holds per-tick ``t, x, y, heading, speed, zone, sound, winner, drives, mode,
-prediction, non_occurrence, phase, trial`` and the teacher's events.
+Metrics. Each pass of the robot within 30 cm of a checkpoint during the patrol is a chance to
+stop there: ``checkpoint_stops_expected`` counts the passes, ``checkpoint_stops_made`` the passes
+with a stop the robot chose for that checkpoint's drive (its first one; ``extra_stops`` counts
+further stops in the same pass, ``misplaced_stops`` stops made there for another checkpoint's
+drive). ``reproduced_waits_s`` are the durations of the counted stops, ``max_rel_error`` their
+worst relative difference from the learned wait.
+
+``run.npz`` holds per-tick ``t, x, y, heading, speed, zone, sound, winner, drives, wait_drive,
+mode, prediction, non_occurrence, phase, trial`` and the teacher's events.
 """
 
 from __future__ import annotations
