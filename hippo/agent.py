@@ -520,9 +520,10 @@ class Agent:
         else:
             # motor continuity: a place can stand for two distant stretches of track (aliasing);
             # a move that would turn the robot around is discounted, so the robot keeps to the
-            # stretch it is on rather than to the alias of it
+            # stretch it is on rather than to the alias of it (also when it moves on after a
+            # wait: it still faces the way it came)
             vals = np.array([self._activity(t) for t in out])
-            if keep_heading:
+            if keep_heading or exclude_wait:
                 for i, t in enumerate(out):
                     a = self.graph.action(t)
                     if not a.is_wait and abs(wrap_angle(a.heading - self.pi.heading)) > 1.75:

@@ -244,9 +244,9 @@ def run(args: argparse.Namespace) -> dict:
         here = [s for s in stops if s["checkpoint"] == k and s["phase"] == 4]
         # a stop made here for another checkpoint's drive (a place that stands for both) is
         # a recognition error, reported apart from the timing of this checkpoint's waits
-        per_pass = [[s["duration"] for s in here if a <= s["i0"] < b and s["drive"] in (k, -1)]
+        per_pass = [[s["duration"] for s in here if a <= s["i0"] < b and s["drive"] == k]
                     for a, b in passes]
-        misplaced = sum(1 for s in here if s["drive"] not in (k, -1))
+        misplaced = sum(1 for s in here if s["drive"] != k)
         rep = [d[0] for d in per_pass if d]
         learned_wait = learned_delays[names[k]]
         err = [abs(r - learned_wait) / learned_wait for r in rep] if learned_wait else []
