@@ -440,7 +440,8 @@ class Agent:
         alternate from lap to lap; the place a stop was taught in then does not win on every
         pass. While moving with an active drive whose stop is bound to place ``C``, the robot
         approaches that stop when ``C``'s activity is close to the winner's (``coactive`` ×
-        the most active place), as it would on entering ``C``."""
+        the most active place) and the map would choose that stop on entering ``C`` (its drive
+        beats those of the moves out of ``C``)."""
         p = self.p
         if p.coactive <= 0 or self.mode != "move" or self.state is None:
             return
@@ -462,6 +463,9 @@ class Agent:
                     continue
                 if (float(acts[kc.index]) < p.coactive * top  # type: ignore[index]
                         or not self.graph.has_state(c) or (c, a) not in self.graph):
+                    continue
+                # only if the map would choose that stop on entering C (drives compete)
+                if max(self.graph.outgoing(c), key=self._activity) != (c, a):
                     continue
                 self.current, self.current_since = (c, a), self.t
                 self.mode, self._approach_t0 = "approach", self.t

@@ -14,7 +14,8 @@ Phases (each with a progress bar):
    learned delay ends the wait, and it moves on.
 6. **adaptation** — the teacher holds the robot longer when it stops at checkpoint 1, and
    restarts it early with the leash at checkpoint 2, then one more loop: the waits follow.
-7. **kidnap** — the robot is put down on the path and resumes toward a checkpoint.
+7. **kidnap** — the robot is put down on the path before the checkpoint it served last (its
+   drive is lowest) and heads on to a checkpoint whose drive is high.
 
 Metrics. Each pass of the robot within 30 cm of a checkpoint during the patrol is a chance to
 stop there: ``checkpoint_stops_expected`` counts the passes, ``checkpoint_stops_made`` the passes
@@ -40,7 +41,7 @@ from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
 from hippo.scenarios.place_preference import STATES, Log, explore, make_places, run_agent
-from hippo.sim import World, arenas
+from hippo.sim import World, arenas, wrap_angle
 
 PHASES = ("exploration", "leash", "reproduction", "checkpoints", "patrol", "adaptation",
           "kidnap")
@@ -218,19 +219,29 @@ def run(args: argparse.Namespace) -> dict:
                     until=lap_until(start_turns + 1.25))
     i_adapt_end = len(log.cols["t"])
 
-    # 7. kidnap onto the path: which checkpoint does the robot head for?
+    # 7. kidnap: the robot is put down on the path two waypoints before the checkpoint whose
+    # drive is lowest (it was served last), facing along the loop. Does it head on to a
+    # checkpoint with a high drive instead of stopping at the one it was put before?
     levels = {n: agent.drives.level(n) for n in names}
-    kx, ky = arenas.loop_waypoints()[9]
-    world.place_robot(kx, ky, obs.pose[2], event="kidnap")
-    agent.lifted()
+    low = min(names, key=levels.get)
+    wp = arenas.loop_waypoints()[:-1]
+    cx, cy = checkpoints[names.index(low)]
+    i_cp = int(np.argmin([math.hypot(x - cx, y - cy) for x, y in wp]))
+    (kx, ky), (nx, ny) = wp[(i_cp - 2) % len(wp)], wp[(i_cp - 1) % len(wp)]
+    heading = math.atan2(ny - ky, nx - kx)
+    world.place_robot(kx, ky, heading, event="kidnap")
+    agent.lifted(wrap_angle(heading - obs.pose[2]))
     t_kid = obs.t
     obs = run_agent(world, agent, obs, int(300 / dt), log, 6, 0,
                     until=lambda o: agent.mode == "wait")
     kidnap_stop = None
     if agent.mode == "wait":
-        d = [math.hypot(obs.pose[0] - cx, obs.pose[1] - cy) for cx, cy in checkpoints]
-        kidnap_stop = {"nearest_checkpoint": names[int(np.argmin(d))],
-                       "distance_cm": float(min(d)), "t_after_kidnap_s": float(obs.t - t_kid)}
+        d = [math.hypot(obs.pose[0] - x, obs.pose[1] - y) for x, y in checkpoints]
+        near = names[int(np.argmin(d))]
+        kidnap_stop = {"nearest_checkpoint": near, "distance_cm": float(min(d)),
+                       "t_after_kidnap_s": float(obs.t - t_kid),
+                       "drive": names[agent.snapshot()["wait_drive"]]
+                       if agent.snapshot()["wait_drive"] >= 0 else None}
         obs = run_agent(world, agent, obs, int(5 / dt), log, 6, 0)
     wall = time.perf_counter() - t0
 
@@ -277,7 +288,10 @@ def run(args: argparse.Namespace) -> dict:
         "extra_stops": int(sum(r["extra_stops"] for r in rows)),
         "misplaced_stops": int(sum(r["misplaced_stops"] for r in rows)),
         "kidnap": {"drive_levels": levels, "highest_drive": max(levels, key=levels.get),
-                   "first_stop": kidnap_stop},
+                   "put_before": low, "first_stop": kidnap_stop,
+                   "passed_the_low_drive": bool(kidnap_stop is not None
+                                                and kidnap_stop["nearest_checkpoint"] != low
+                                                and kidnap_stop["distance_cm"] < 30.0)},
         "states": agent.layer.n_states, "transitions": len(agent.graph),
         "simulated_s": float(obs.t), "wall_s": wall,
         "realtime_factor": float(obs.t) / wall,

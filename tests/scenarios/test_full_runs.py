@@ -24,7 +24,7 @@ def test_full_patrol_with_ground_truth_place_cells(tmp_path):
 
 
 def test_full_patrol_with_learned_place_cells(tmp_path):
-    # over seeds 0-19 the learned patrol stopped at 259 of 301 checkpoint passes (86 %);
+    # over seeds 0-19 the learned patrol stopped at 263 of 303 checkpoint passes (87 %);
     # seed 11 stopped at all 15 and timed every wait exactly
     m = run_scenario("patrol", ["--seed", "11", "--out", str(tmp_path)])
     assert m["checkpoint_stops_made"] >= 0.8 * m["checkpoint_stops_expected"]

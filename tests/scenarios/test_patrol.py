@@ -23,6 +23,10 @@ def test_ground_truth_reproduces_untuned_waits(tmp_path):
         assert all(abs(w - r["learned_wait_s"]) <= 0.03 * r["learned_wait_s"]
                    for w in r["reproduced_waits_s"])
         assert r["sd_s"] <= 0.3
+    # kidnapped before the checkpoint it served last (lowest drive), it heads on to another
+    k = m["kidnap"]
+    assert k["passed_the_low_drive"] and k["first_stop"]["drive"] != k["put_before"]
+    assert k["drive_levels"][k["put_before"]] == min(k["drive_levels"].values())
     a = m["adaptation"]
     assert a["longer_block"]["after_s"] > a["longer_block"]["before_s"] + 3.0
     assert a["leash_restart"]["after_s"] < a["leash_restart"]["before_s"] - 3.0
