@@ -19,10 +19,14 @@ def prepare_out(out: str | Path) -> Path:
     return path
 
 
-def write_metrics(out: Path, metrics: dict[str, Any], *, announce: bool = True) -> Path:
-    """Write ``out/metrics.json`` atomically and tell the user where the results are."""
+def write_metrics(out: Path, metrics: dict[str, Any], *, announce: bool = True,
+                  summary: str | None = None) -> Path:
+    """Write ``out/metrics.json`` atomically and tell the user where the results are (and,
+    with ``summary``, the headline numbers)."""
     path = save_json(Path(out) / "metrics.json", metrics)
     if announce:
+        if summary:
+            print(summary, file=sys.stderr)
         print(f"results written to {Path(out).resolve()} (metrics.json, figures, run.npz)",
               file=sys.stderr)
     return path

@@ -299,7 +299,14 @@ def run(args: argparse.Namespace) -> dict:
     from hippo.plots.agent import plot_patrol
 
     plot_patrol(out, arena, agent, arrays, rows)
-    write_metrics(out, metrics)
+    waits = "; ".join(
+        f"{r['checkpoint']}: learned {r['learned_wait_s']:.1f} s, reproduced "
+        + (f"{r['mean_s']:.1f} ± {r['sd_s']:.2f} s" if r["mean_s"] is not None else "none")
+        for r in rows if r["learned_wait_s"] is not None)
+    write_metrics(out, metrics, summary=(
+        f"patrol ({args.place_cells} place cells): stopped at "
+        f"{metrics['checkpoint_stops_made']} of {metrics['checkpoint_stops_expected']} "
+        f"checkpoint passes; {waits}"))
     return metrics
 
 

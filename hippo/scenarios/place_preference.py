@@ -366,7 +366,15 @@ def run(args: argparse.Namespace) -> dict:
     from hippo.plots.agent import plot_place_preference
 
     plot_place_preference(out, arena, agent, arrays, results, args.delay)
-    write_metrics(out, metrics)
+    resume = metrics["extinction_resume_delays_s"]
+    write_metrics(out, metrics, summary=(
+        f"place preference ({args.place_cells} place cells): {metrics['rewarded_successes']} "
+        f"of {metrics['rewarded_trials']} rewarded trials reached the goal, stopped and waited "
+        f"for the sound; extinction: stopped in {metrics['extinction_stops']} of "
+        f"{metrics['extinction_trials']} trials and moved on "
+        + (f"{np.mean(resume):.1f} s after the learned delay" if resume else "(no stop)")
+        + (f"; path {metrics['path_length_ratio']:.2f} x the shortest"
+           if metrics["path_length_ratio"] is not None else "")))
     return metrics
 
 
