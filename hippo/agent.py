@@ -119,9 +119,7 @@ class LearnedPlaceCells:
         every prototype silent) for about 100 s."""
         self.model.reset_state()
         for u in np.asarray(sensors, dtype=float):
-            y = self.model.step(u)
-        if self.prototypes is not None and len(sensors):
-            self.prototypes.transform(y)  # validates; prototypes hold no state
+            self.model.step(u)  # the prototypes hold no state: nothing else to run
 
 
 class GroundTruthPlaceCells:
@@ -641,8 +639,7 @@ class Agent:
         if cur is None:
             return -1
         if self.layer.key(cur[1]).kind == "still":  # the stop itself: the wait after it
-            nxt = [t for t in self.graph.outgoing(cur[1]) if t in self.graph] \
-                if self.graph.has_state(cur[1]) else []
+            nxt = self.graph.outgoing(cur[1]) if self.graph.has_state(cur[1]) else []
         else:
             nxt = [cur]
         for i, name in enumerate(self.drives.names):

@@ -237,11 +237,10 @@ def run(args: argparse.Namespace) -> dict:
     kidnap_stop = None
     if agent.mode == "wait":
         d = [math.hypot(obs.pose[0] - x, obs.pose[1] - y) for x, y in checkpoints]
-        near = names[int(np.argmin(d))]
-        kidnap_stop = {"nearest_checkpoint": near, "distance_cm": float(min(d)),
-                       "t_after_kidnap_s": float(obs.t - t_kid),
-                       "drive": names[agent.snapshot()["wait_drive"]]
-                       if agent.snapshot()["wait_drive"] >= 0 else None}
+        served = agent.snapshot()["wait_drive"]
+        kidnap_stop = {"nearest_checkpoint": names[int(np.argmin(d))],
+                       "distance_cm": float(min(d)), "t_after_kidnap_s": float(obs.t - t_kid),
+                       "drive": names[served] if served >= 0 else None}
         obs = run_agent(world, agent, obs, int(5 / dt), log, 6, 0)
     wall = time.perf_counter() - t0
 
