@@ -8,9 +8,15 @@ from typing import Any
 import numpy as np
 
 
-def check_finite(name: str, value: Any) -> np.ndarray:
-    """Return ``value`` as a float array, or raise ``ValueError`` if it holds NaN or inf."""
-    arr = np.asarray(value, dtype=float)
+def check_finite(name: str, value: Any, *, keep_float32: bool = False) -> np.ndarray:
+    """Return ``value`` as a float array, or raise ``ValueError`` if it holds NaN or inf.
+
+    With ``keep_float32`` a float32 array is returned as is (no float64 copy of a large
+    recording); anything else becomes float64.
+    """
+    arr = np.asarray(value)
+    if not (keep_float32 and arr.dtype == np.float32):
+        arr = np.asarray(arr, dtype=float)
     # one reduction on the hot path: a NaN or inf anywhere makes the sum non-finite
     if not math.isfinite(float(np.add.reduce(arr, axis=None))):
         bad = int(np.size(arr) - np.count_nonzero(np.isfinite(arr)))

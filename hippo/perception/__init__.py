@@ -1,7 +1,8 @@
 """hippo.perception: place cells that learn themselves (RC-SFA-ICA, SMC09 / ICANN09).
 
 * :class:`Reservoir` — leaky ESN with per-neuron leak rates (SMC09 eq. 1), torch, batched.
-* :class:`SFA` — linear (or quadratic) slow feature analysis with a whitening cutoff.
+* :class:`SFA` — linear (or quadratic) slow feature analysis with a whitening cutoff;
+  :class:`SFAMoments` — the running sums it learns from, fed chunk by chunk.
 * :class:`FastICA` — cube-nonlinearity FastICA with restarts scored without labels.
 * :class:`RCSFAICA` — the three layers as one estimator: ``fit`` / ``transform`` / ``step``.
 * :class:`PlacePrototypes` — radial-basis place cells over the RC-SFA-ICA population vector.
@@ -21,7 +22,7 @@ from hippo.perception.place_cells import (
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
 from hippo.perception.resample import Decimator
 from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
-from hippo.perception.sfa import SFA, SFAParams
+from hippo.perception.sfa import SFA, SFAMoments, SFAParams
 from hippo.perception.states import StateEvent, StateKey, StateLayer, StateLayerParams
 
 __all__ = [
@@ -38,6 +39,7 @@ __all__ = [
     "RCSFAICAParams",
     "Reservoir",
     "ReservoirParams",
+    "SFAMoments",
     "SFAParams",
     "StateEvent",
     "StateKey",

@@ -18,6 +18,11 @@ units are comparable with each other and ICANN09's "responds ≥ 4.5" reads as 4
 standard deviations. ``output_peak_`` (each unit's 99.9th percentile on the training data) lets
 a state layer normalise activities to roughly [.., 1].
 
+Fitting runs on both cores: the reservoir is harvested chunk by chunk while a second thread
+adds each finished chunk to the SFA moments (:class:`~hippo.perception.sfa.SFAMoments`), so SFA
+costs little more than the harvest; :func:`fit_leak_sweep` harvests many leak configurations
+as one batch and fits them on parallel threads.
+
 Optional input down-sampling (``downsample > 1``, ICANN09: 50) uses a causal anti-aliasing
 FIR (:mod:`hippo.perception.resample`); the reservoir then ticks once per ``downsample`` inputs
 and outputs are held in between.
@@ -28,7 +33,9 @@ from __future__ import annotations
 import json
 import os
 from collections.abc import Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import asdict, dataclass, fields, replace
+from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
@@ -36,13 +43,19 @@ import numpy as np
 import torch
 
 from hippo._checks import check_finite
+from hippo._threads import n_workers, single_threaded_blas
 from hippo.io import CorruptFileError, load_npz, save_npz
 from hippo.perception.ica import FastICA, ICAParams
 from hippo.perception.resample import Decimator, hold
 from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
-from hippo.perception.sfa import SFA, SFAParams
+from hippo.perception.reservoir import _num_threads as _torch_threads
+from hippo.perception.sfa import SFA, SFAMoments, SFAParams, chunk_bounds
 
 FORMAT = "hippo.perception.RCSFAICA/1"
+#: reservoir ticks per chunk when the harvest and the SFA moments run side by side
+_HARVEST_CHUNK = 2048
+#: leak configurations harvested together by ``fit_leak_sweep``
+_SWEEP_BATCH = 16
 
 
 @dataclass(frozen=True)
@@ -192,14 +205,52 @@ class RCSFAICA:
                              f"(washout {p.washout}, downsample {p.downsample})")
         self.reservoir_ = self._build_reservoir()
         self.n_features_in_ = p.n_inputs
-        X = self.features(U)
-        return self._fit_features(X)
+        Ud = self._decimator().offline(U)
+        if self.reservoir_ is None or p.sfa_expansion != "linear":
+            return self._fit_features(self.features(Ud, downsampled=True))
+        return self._fit_features(*self._harvest_summarised(Ud))
 
-    def _fit_features(self, X: np.ndarray) -> RCSFAICA:
+    def _harvest_summarised(self, Ud: np.ndarray) -> tuple[np.ndarray, list[SFAMoments]]:
+        """Features ``[u; x]`` of ``Ud`` and their SFA moments (after the washout), computed side
+        by side: the reservoir runs chunk by chunk on this thread while a second thread adds each
+        finished chunk to the moments (both with single-threaded BLAS). Same numbers as
+        ``features`` then ``SFA.accumulate``, in about the time of the harvest alone."""
+        p = self.params
+        res = self.reservoir_
+        n_u = p.n_inputs
+        T = Ud.shape[0]
+        X = np.empty((T, n_u + res.n_neurons), dtype=res.np_dtype)
+        X[:, :n_u] = Ud
+        w = int(p.washout)
+        split = SFA(p.sfa_params()).auto_split(T - w)
+        parts = [SFAMoments(X.shape[1]) for _ in range(1 if split is None else 2)]
+        bounds = sorted({0, *(w + b for b in chunk_bounds(T - w, X.shape[1], split=split,
+                                                           rows=_HARVEST_CHUNK))})
+        x = None
+        with single_threaded_blas(), ThreadPoolExecutor(1) as pool:
+            pending = []
+            for t0, t1 in pairwise(bounds):
+                S = res.run(Ud[t0:t1], x0=x).cpu().numpy()
+                X[t0:t1, n_u:] = S
+                x = S[-1]
+                if t0 >= w:
+                    part = parts[0 if split is None or t1 - w <= split else 1]
+                    pending.append(pool.submit(part.update, X[t0:t1]))
+            for job in pending:
+                job.result()
+        return X, parts
+
+    def _fit_features(self, X: np.ndarray, moments: list[SFAMoments] | None = None) -> RCSFAICA:
+        """Fit SFA and ICA on the features ``X`` (washout included); ``moments``, when given,
+        are the SFA moments of ``X`` after the washout."""
         p = self.params
         X = X[p.washout:]
         self.sfa_ = SFA(p.sfa_params())
-        Y = self.sfa_.fit_transform(X)
+        if moments is None:
+            Y = self.sfa_.fit_transform(X)
+        else:
+            self.sfa_._prepare(X)
+            Y = self.sfa_._fit_moments(moments, X)
         self.sfa_slowness_ = self.sfa_.slowness_.copy()
         self.ica_ = FastICA(p.ica_params())
         S = self.ica_.fit_transform(Y)
@@ -391,12 +442,15 @@ class RCSFAICA:
 
 
 def fit_leak_sweep(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams | None = None,
-                   **overrides: Any) -> list[RCSFAICA]:
-    """Fit one :class:`RCSFAICA` per leak configuration over **one** reservoir (same weights),
-    harvesting all configurations in a single batched run (one matrix-matrix product per tick).
+                   *, workers: int | None = None, **overrides: Any) -> list[RCSFAICA]:
+    """Fit one :class:`RCSFAICA` per leak configuration over **one** reservoir (same weights).
 
-    ``leaks`` is a sequence of leak specs (each a float, k floats, or N floats). Returns fitted
-    models whose ``params.leak`` is the configuration (as given).
+    The configurations are harvested together, up to 16 at a time (one matrix-matrix product
+    per tick for the batch, BLAS on ``workers`` threads); then ``workers`` threads (default: the
+    usable cores), each with single-threaded BLAS, fit SFA and ICA for one configuration after
+    another. ``leaks`` is a sequence of leak specs (each a float, k floats, or N floats). Returns
+    the fitted models, in the order of ``leaks``, whose ``params.leak`` is the configuration
+    (as given).
     """
     base = replace(params or RCSFAICAParams(), **overrides)
     if not base.use_reservoir:
@@ -409,17 +463,25 @@ def fit_leak_sweep(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams |
     N = base.n_reservoir
     A = np.stack([expand_leak(lk, N) for lk in leaks])
     Ud = template._decimator().offline(U)
+    k = min(n_workers(workers), len(leaks))
+    states: list[np.ndarray] = []
     with torch.inference_mode():
-        states = res.run(Ud, leak=A)                       # (B, T, N)
-    models = []
-    for b, lk in enumerate(leaks):
+        for g in range(0, len(leaks), _SWEEP_BATCH):
+            S = res.run(Ud, leak=A[g:g + _SWEEP_BATCH], threads=k).cpu().numpy()  # (b, T, N)
+            states.extend(S)
+
+    def fit_one(b: int) -> RCSFAICA:
+        lk = leaks[b]
         lk_param = float(lk) if np.ndim(lk) == 0 else tuple(float(v) for v in np.ravel(lk))
         m = RCSFAICA(base, leak=lk_param)
         m.reservoir_ = Reservoir.from_weights(res.W_in, res.W_res, A[b],
                                               spectral_radius=base.spectral_radius,
                                               dtype=base.dtype, device=base.device)
         m.n_features_in_ = base.n_inputs
-        Xb = states[b].cpu().numpy()
-        m._fit_features(np.concatenate([Ud.astype(Xb.dtype), Xb], axis=1))
-        models.append(m)
-    return models
+        Xb = states[b]
+        return m._fit_features(np.concatenate([Ud.astype(Xb.dtype), Xb], axis=1))
+
+    if k == 1:
+        return [fit_one(b) for b in range(len(leaks))]
+    with single_threaded_blas(), _torch_threads(1), ThreadPoolExecutor(k) as pool:
+        return list(pool.map(fit_one, range(len(leaks))))

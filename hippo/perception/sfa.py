@@ -24,11 +24,16 @@ slow directions are fast on new data).
 (the non-linear SFA of the no-reservoir ablation, ICANN09 §4).
 
 Derivatives are first differences per sample, ``ẋ(t) = x(t+1) - x(t)``, so Δ is in 1/sample².
+
+The data enter only through their moments (mean, ``Σ x xᵀ``, ``Σ ẋ ẋᵀ``), accumulated chunk by
+chunk in float64 by :class:`SFAMoments` (so a float32 recording is never copied whole, and
+``RCSFAICA.fit`` can summarise reservoir states while the reservoir is still running).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from itertools import pairwise
 from typing import Any
 
 import numpy as np
@@ -69,16 +74,112 @@ def quadratic_expansion(Z: np.ndarray) -> np.ndarray:
     return np.concatenate([Z, Z[..., i] * Z[..., j]], axis=-1)
 
 
-def _moments(X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Sums ``Σ x xᵀ`` and ``Σ ẋ ẋᵀ`` (float64; ``X.T @ X`` lets BLAS use a symmetric rank-k
-    update)."""
-    C = X.T @ X
-    D = np.diff(X, axis=0)
-    return C, D.T @ D
+#: rows per chunk when accumulating moments: bounds the float64 working copies to ~16 MB
+_CHUNK_VALUES = 2_000_000
+
+
+def chunk_bounds(T: int, d: int, *, split: int | None = None, rows: int | None = None) -> list[int]:
+    """Row boundaries ``[0, ..., T]`` of the chunks in which a ``(T, d)`` series is accumulated
+    (``rows`` per chunk, by default ~2 million values; ``split``, when given, is a boundary)."""
+    rows = int(rows) if rows else max(256, _CHUNK_VALUES // max(d, 1))
+    b = set(range(0, T, rows)) | {T}
+    if split is not None:
+        b.add(int(split))
+    return sorted(b)
+
+
+class SFAMoments:
+    """Running sums of a time series, fed in consecutive chunks: all that SFA needs of the data.
+
+    After ``update(X_1)``, ``update(X_2)``, … (rows in time order, each chunk continuing the
+    previous one) it holds ``n`` samples, their ``mean``, the centred ``scatter``
+    ``Σ (x - mean)(x - mean)ᵀ`` and the derivative scatter ``diff_scatter = Σ ẋ ẋᵀ`` over the
+    ``n_diff = n - 1`` first differences, including those across chunk boundaries. Chunks are
+    centred on their own mean and combined with Chan, Golub & LeVeque's (1979) pairwise update, so
+    a large mean does not cancel the variance; differences are taken in float64 before any
+    centring. Feeding one chunk or many gives the same sums to rounding.
+
+    This lets a reservoir be harvested and summarised chunk by chunk (``RCSFAICA.fit`` overlaps
+    the two), and keeps only chunk-sized float64 copies in memory.
+    """
+
+    def __init__(self, n_features: int) -> None:
+        d = int(n_features)
+        if d < 1:
+            raise ValueError(f"n_features must be >= 1, got {n_features}")
+        self.n = 0
+        self.mean = np.zeros(d)
+        self.scatter = np.zeros((d, d))
+        self.n_diff = 0
+        self.diff_scatter = np.zeros((d, d))
+        self.first: np.ndarray | None = None
+        self.last: np.ndarray | None = None
+
+    @property
+    def n_features(self) -> int:
+        return self.mean.shape[0]
+
+    def update(self, X: np.ndarray) -> SFAMoments:
+        """Add the rows of ``X`` (k, d), which follow the rows already added."""
+        X = np.asarray(X)
+        if X.ndim != 2 or X.shape[1] != self.n_features:
+            raise ValueError(f"chunk must have shape (k, {self.n_features}), got {X.shape}")
+        k = X.shape[0]
+        if k == 0:
+            return self
+        Xd = np.array(X, dtype=np.float64)            # own float64 copy, centred in place below
+        if k > 1:
+            D = np.diff(Xd, axis=0)
+            self.diff_scatter += D.T @ D
+            self.n_diff += k - 1
+        if self.last is not None:
+            b = Xd[0] - self.last
+            self.diff_scatter += np.outer(b, b)
+            self.n_diff += 1
+        else:
+            self.first = Xd[0].copy()
+        self.last = Xd[-1].copy()
+        m = Xd.mean(axis=0)
+        Xd -= m
+        self._combine(k, m, Xd.T @ Xd)
+        return self
+
+    def _combine(self, k: int, m: np.ndarray, S: np.ndarray) -> None:
+        n = self.n
+        total = n + k
+        delta = m - self.mean
+        self.mean = self.mean + delta * (k / total)
+        self.scatter += S + np.outer(delta, delta) * (n * k / total)
+        self.n = total
+
+    def merged(self, later: SFAMoments) -> SFAMoments:
+        """The moments of this series followed by ``later`` (a new object)."""
+        if later.n_features != self.n_features:
+            raise ValueError("moments of different dimensions cannot be merged")
+        out = SFAMoments(self.n_features)
+        for part in (self, later):
+            if part.n == 0:
+                continue
+            if out.last is not None:
+                b = part.first - out.last
+                out.diff_scatter += np.outer(b, b)
+                out.n_diff += 1
+            else:
+                out.first = part.first
+            out.diff_scatter += part.diff_scatter
+            out.n_diff += part.n_diff
+            out._combine(part.n, part.mean, part.scatter)
+            out.last = part.last
+        return out
+
+    def scatter_about(self, center: np.ndarray) -> np.ndarray:
+        """``Σ (x - center)(x - center)ᵀ``."""
+        delta = self.mean - center
+        return self.scatter + self.n * np.outer(delta, delta)
 
 
 def _whiten(C: np.ndarray, cutoff: float) -> tuple[np.ndarray, np.ndarray]:
-    d, E = scipy.linalg.eigh(C, overwrite_a=False, check_finite=False)
+    d, E = scipy.linalg.eigh(C, overwrite_a=False, check_finite=False, driver="evd")
     keep = d > cutoff * max(d[-1], np.finfo(float).tiny)
     return E[:, keep] / np.sqrt(d[keep]), d[::-1]
 
@@ -115,37 +216,65 @@ class SFA:
         X = np.asarray(X)
         if X.ndim != 2:
             raise ValueError(f"{name} must be a 2-D array (time, features), got shape {X.shape}")
-        X = check_finite(name, X)
-        return X
+        return check_finite(name, X, keep_float32=True)
 
     # ------------------------------------------------------------------ fit / transform
     def fit(self, X: np.ndarray) -> SFA:
         """Learn the slow features of ``X`` (T, d), rows in time order."""
         X = self._check_X(X)
+        self._fit_moments(self.accumulate(X), X)
+        return self
+
+    def accumulate(self, X: np.ndarray) -> list[SFAMoments]:
+        """Checked ``X`` summarised chunk by chunk: the moments ``fit`` learns from. One
+        :class:`SFAMoments`, or two (the first 80 % and the rest) for ``cutoff="auto"``."""
+        self._prepare(X)
+        T = X.shape[0]
+        split = self.auto_split(T)
+        parts = [SFAMoments(self.n_expanded_) for _ in range(1 if split is None else 2)]
+        bounds = chunk_bounds(T, self.n_expanded_, split=split)
+        for t0, t1 in pairwise(bounds):
+            parts[0 if split is None or t1 <= split else 1].update(self._expand(X[t0:t1]))
+        return parts
+
+    def auto_split(self, T: int) -> int | None:
+        """Where ``cutoff="auto"`` splits ``T`` training samples (None for a fixed cutoff)."""
+        return int(0.8 * T) if self.params.cutoff == "auto" else None
+
+    def _prepare(self, X: np.ndarray) -> None:
+        """Shape checks and the input scaling of the quadratic expansion."""
         n = int(self.params.n_components)
         T, d_in = X.shape
         if T < 3:
             raise ValueError(f"SFA needs at least 3 samples, got {T}")
         self.n_features_in_ = d_in
         if self.params.expansion == "quadratic":
-            self.pre_mean_ = X.mean(axis=0)
-            sd = X.std(axis=0)
+            self.pre_mean_ = X.mean(axis=0, dtype=np.float64)
+            sd = X.std(axis=0, dtype=np.float64)
             self.pre_scale_ = np.where(sd > 1e-12 * (1.0 + np.abs(self.pre_mean_)), sd, 1.0)
-        Xe = self._expand(X)
-        d = Xe.shape[1]
-        if n > d:
-            raise ValueError(f"n_sfa={n} exceeds the SFA input dimension {d}")
-        self.mean_ = Xe.mean(axis=0)
-        sd = Xe.std(axis=0)
+            self.n_expanded_ = d_in + d_in * (d_in + 1) // 2
+        else:
+            self.n_expanded_ = d_in
+        if n > self.n_expanded_:
+            raise ValueError(f"n_sfa={n} exceeds the SFA input dimension {self.n_expanded_}")
+
+    def _fit_moments(self, parts: list[SFAMoments], X: np.ndarray) -> np.ndarray:
+        """Solve SFA from the moments of ``X`` (from :meth:`accumulate`); returns the training
+        outputs."""
+        n = int(self.params.n_components)
+        total = parts[0] if len(parts) == 1 else parts[0].merged(parts[1])
+        if total.n != X.shape[0]:
+            raise ValueError(f"moments of {total.n} samples do not describe X ({X.shape[0]} rows)")
+        self.mean_ = total.mean
+        sd = np.sqrt(np.maximum(np.diag(total.scatter) / total.n, 0.0))
         # constant columns: scale 1 (they become 0 and the cutoff drops them)
         self.scale_ = np.where(sd > 1e-12 * (1.0 + np.abs(self.mean_)), sd, 1.0)
-        Z = (Xe - self.mean_) / self.scale_
-        C, A = _moments(Z)
-        C /= T
-        A /= T - 1
+        inv = 1.0 / np.outer(self.scale_, self.scale_)
+        C = total.scatter * inv / total.n
+        A = total.diff_scatter * inv / total.n_diff
         cutoff = self.params.cutoff
         if cutoff == "auto":
-            cutoff = self._select_cutoff(Z, n)
+            cutoff = self._select_cutoff(parts, inv, n)
         self.cutoff_ = float(cutoff)
         S, eig = _whiten(C, self.cutoff_)
         self.input_eigenvalues_ = eig
@@ -155,17 +284,20 @@ class SFA:
                 f"only {self.n_whitened_} input directions survive the whitening cutoff "
                 f"{self.cutoff_:g} but n_sfa={n}; lower the cutoff or n_sfa")
         lam, W = _slow(S, A, n)
-        y = Z @ W
+        self.W_ = W
+        y = self._project(X)
         sign = np.where(np.mean(y ** 3, axis=0) < 0, -1.0, 1.0)
         self.W_ = W * sign
         self.slowness_ = lam
-        return self
+        return y * sign
 
-    def _select_cutoff(self, Z: np.ndarray, n: int) -> float:
-        split = int(0.8 * Z.shape[0])
-        C1, A1 = _moments(Z[:split])
-        C2, A2 = _moments(Z[split:])
-        d, E = scipy.linalg.eigh(C1 / split, check_finite=False)
+    def _select_cutoff(self, parts: list[SFAMoments], inv: np.ndarray, n: int) -> float:
+        first, rest = parts
+        C1 = first.scatter_about(self.mean_) * inv / first.n
+        A1 = first.diff_scatter * inv / first.n_diff
+        C2 = rest.scatter_about(self.mean_) * inv
+        A2 = rest.diff_scatter * inv
+        d, E = scipy.linalg.eigh(C1, check_finite=False)
         best, best_score = None, np.inf
         scores = {}
         for c in _AUTO_CANDIDATES:
@@ -173,7 +305,7 @@ class SFA:
             if keep.sum() < n:
                 continue
             S = E[:, keep] / np.sqrt(d[keep])
-            _, W = _slow(S, A1 / (split - 1), n)
+            _, W = _slow(S, A1, n)
             num = np.einsum("ij,ik,kj->j", W, A2, W)
             den = np.einsum("ij,ik,kj->j", W, C2, W)
             score = float(np.sum(num / np.maximum(den, 1e-300)))
@@ -185,6 +317,17 @@ class SFA:
         self.cutoff_scores_ = scores
         return best
 
+    def _project(self, X: np.ndarray) -> np.ndarray:
+        """``z(expand(X)) @ W_``, chunk by chunk (no full-size float64 copy)."""
+        out = np.empty((X.shape[0], self.W_.shape[1]))
+        bounds = chunk_bounds(X.shape[0], self.mean_.shape[0])
+        M = self.W_ / self.scale_[:, None]                 # z(x) @ W == x @ M - mean @ M
+        b = self.mean_ @ M
+        for t0, t1 in pairwise(bounds):
+            out[t0:t1] = np.asarray(self._expand(X[t0:t1]), dtype=np.float64) @ M
+        out -= b
+        return out
+
     def transform(self, X: np.ndarray) -> np.ndarray:
         """Slow features ``(T, n)`` of ``X`` ``(T, d)``."""
         self._check_fitted()
@@ -192,10 +335,12 @@ class SFA:
         if X.shape[1] != self.n_features_in_:
             raise ValueError(f"X has {X.shape[1]} features, SFA was fitted on "
                              f"{self.n_features_in_}")
-        return ((self._expand(X) - self.mean_) / self.scale_) @ self.W_
+        return self._project(X)
 
     def fit_transform(self, X: np.ndarray) -> np.ndarray:
-        return self.fit(X).transform(X)
+        """``fit(X)``, then the slow features of ``X`` (computed once)."""
+        X = self._check_X(X)
+        return self._fit_moments(self.accumulate(X), X)
 
     def affine(self) -> tuple[np.ndarray, np.ndarray]:
         """``(M, b)`` with ``transform(X) == X @ M + b`` (linear expansion only)."""

@@ -110,6 +110,44 @@ def test_leak_sweep_matches_individual_fits():
     np.testing.assert_allclose(models[1].sfa_slowness_, single.sfa_slowness_, rtol=1e-6)
 
 
+def test_leak_sweep_same_result_on_one_or_two_workers():
+    U = _walk(T=1500)
+    leaks = [0.1, 0.2, 0.4, (0.05, 0.5), 0.9]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ICAConvergenceWarning)
+        one = fit_leak_sweep(U, leaks, n_reservoir=60, ica_restarts=1, workers=1)
+        two = fit_leak_sweep(U, leaks, n_reservoir=60, ica_restarts=1, workers=2)
+        again = fit_leak_sweep(U, leaks, n_reservoir=60, ica_restarts=1, workers=2)
+    for a, b, c in zip(one, two, again):
+        assert a.params.leak == b.params.leak
+        np.testing.assert_allclose(a.sfa_.W_, b.sfa_.W_, rtol=1e-4, atol=1e-6)
+        np.testing.assert_array_equal(b.transform(U), c.transform(U))   # same seed, same result
+    with pytest.raises(ValueError, match="workers"):
+        fit_leak_sweep(U, leaks, n_reservoir=60, workers=0)
+
+
+@pytest.mark.parametrize("washout,cutoff", [(0, 1e-8), (37, 1e-8), (0, "auto"), (11, "auto")])
+def test_fit_summarises_the_harvest_as_sfa_does(washout, cutoff, monkeypatch):
+    """fit() harvests and accumulates the SFA moments side by side, chunk by chunk; the result
+    is the SFA of the features fitted the plain way."""
+    import hippo.perception.place_cells as pc
+    from hippo.perception.sfa import SFA
+
+    monkeypatch.setattr(pc, "_HARVEST_CHUNK", 173)        # many chunks, one across the split
+    U = _walk(T=1300)
+    model = RCSFAICA.smc09(n_reservoir=70, washout=washout, sfa_cutoff=cutoff, ica_restarts=1,
+                           dtype="float64")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ICAConvergenceWarning)
+        model.fit(U)
+    X = model.features(U)
+    np.testing.assert_allclose(model._harvest_summarised(U)[0], X, atol=1e-12)
+    ref = SFA(model.params.sfa_params()).fit(X[washout:])
+    assert model.sfa_.cutoff_ == ref.cutoff_ and model.sfa_.n_whitened_ == ref.n_whitened_
+    np.testing.assert_allclose(model.sfa_.slowness_, ref.slowness_, rtol=1e-8)
+    np.testing.assert_allclose(model.sfa_.transform(X), ref.transform(X), atol=1e-7)
+
+
 def test_presets():
     assert RCSFAICA.smc09().params.n_reservoir == 600
     p = RCSFAICA.icann09().params

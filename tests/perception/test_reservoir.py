@@ -142,3 +142,13 @@ def test_numpy_and_torch_backends_agree():
     leaks = np.array([[0.05, 0.15], [0.5, 0.9]])
     np.testing.assert_allclose(r.run(U, leak=leaks).numpy(),
                                r.run(U, leak=leaks, backend="torch").numpy(), atol=1e-12)
+
+
+def test_threads_do_not_change_the_states():
+    r = Reservoir(small(), dtype="float64")
+    U = _inputs(300)
+    leaks = np.array([[0.05, 0.15], [0.11, 0.14], [0.3, 0.3], [1.0, 1.0]])
+    one = r.run(U, leak=leaks, threads=1).numpy()
+    two = r.run(U, leak=leaks, threads=2).numpy()
+    np.testing.assert_allclose(one, two, atol=1e-12)
+    np.testing.assert_allclose(r.run(U, threads=2).numpy(), r.run(U).numpy(), atol=1e-12)

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from hippo.perception.sfa import SFA, SFAParams, quadratic_expansion
+from hippo.perception.sfa import SFA, SFAMoments, SFAParams, quadratic_expansion
 
 
 def _mixture(T=4000, seed=0, extra_cols=0):
@@ -89,3 +89,38 @@ def test_bad_input():
     sfa = SFA(n_components=2).fit(X)
     with pytest.raises(ValueError, match="features"):
         sfa.transform(X[:, :3])
+
+
+def test_moments_in_chunks_equal_the_two_pass_sums():
+    X, _ = _mixture(T=1000, seed=3)
+    X = X + 1e6                                       # a large mean must not cancel the variance
+    m = SFAMoments(X.shape[1])
+    for t0, t1 in [(0, 1), (1, 250), (250, 251), (251, 700), (700, 1000)]:
+        m.update(X[t0:t1])
+    Xc = X - X.mean(axis=0)
+    D = np.diff(X, axis=0)
+    assert m.n == 1000 and m.n_diff == 999
+    np.testing.assert_allclose(m.mean, X.mean(axis=0), rtol=1e-14)
+    np.testing.assert_allclose(m.scatter, Xc.T @ Xc, rtol=1e-9, atol=1e-9 * np.abs(Xc.T @ Xc).max())
+    np.testing.assert_allclose(m.diff_scatter, D.T @ D, rtol=1e-9)
+    # two halves accumulated apart, then merged in time order
+    a, b = SFAMoments(X.shape[1]).update(X[:400]), SFAMoments(X.shape[1]).update(X[400:])
+    ab = a.merged(b)
+    big = np.abs(m.scatter).max()
+    np.testing.assert_allclose(ab.scatter, m.scatter, rtol=1e-9, atol=1e-9 * big)
+    np.testing.assert_allclose(ab.diff_scatter, m.diff_scatter, rtol=1e-12)
+    assert ab.n_diff == 999
+    c = np.ones(X.shape[1])
+    np.testing.assert_allclose(a.scatter_about(c), (X[:400] - c).T @ (X[:400] - c), rtol=1e-9)
+    with pytest.raises(ValueError, match="shape"):
+        m.update(X[:, :2])
+
+
+def test_float32_input_fits_like_float64():
+    X, _ = _mixture()
+    X32 = X.astype(np.float32)
+    a = SFA(n_components=2).fit(X32)
+    b = SFA(n_components=2).fit(X32.astype(np.float64))
+    np.testing.assert_allclose(a.slowness_, b.slowness_, rtol=1e-10)
+    np.testing.assert_allclose(a.transform(X32), b.transform(X32), atol=1e-9)
+    np.testing.assert_allclose(a.fit_transform(X32), a.transform(X32), atol=1e-9)
