@@ -10,6 +10,12 @@ until the room cell is right again and stays right for ``--hold`` ticks (mean ov
 that really changed the robot's room: a wall follower that walked home by itself before being
 put back was not kidnapped). With leaks 0.11/0.14 a corridor cell appears (SMC09 Fig. 8).
 Everything is repeated over ``--seeds`` reservoirs (mean ± sd).
+
+``--leak`` replaces SMC09's leak pair for the room cell. ``--leak-sweep 1`` also fits a grid of
+16 leak pairs over each reservoir (:func:`~hippo.perception.fit_leak_sweep`: one batched harvest
+and parallel fits) and reports the room cell's accuracy and kidnapping recovery for each pair
+(``leak_sweep`` in the metrics, ``leak_sweep.png``): the slow leak sets both, one against the
+other.
 """
 
 from __future__ import annotations
@@ -21,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo.perception import RCSFAICA, ICAConvergenceWarning
+from hippo.perception import RCSFAICA, ICAConvergenceWarning, fit_leak_sweep
 from hippo.perception import metrics as M
 from hippo.progress import Progress
 from hippo.scenarios._common import mean_sd, prepare_out, sfa_cutoff, write_metrics
@@ -33,6 +39,20 @@ CORRIDOR_LEAK = (0.11, 0.14)
 KIDNAP_AWAY = (150, 640)    # test ticks: moved to the other room (SMC09 Fig. 7)
 KIDNAP_BACK = (400, 980)    # test ticks: put back where it was taken from
 TARGETS = {"room_cell_test_balanced_accuracy": 0.97, "kidnap_recovery_ticks": 15}
+SWEEP_SLOW = (0.03, 0.05, 0.08, 0.11)     # leak of the first half of the neurons
+SWEEP_FAST = (0.14, 0.15, 0.2, 0.3)       # leak of the second half
+
+
+def parse_leak(text: str) -> tuple[float, ...]:
+    """``"0.05,0.15"`` -> ``(0.05, 0.15)``: one leak rate or one per group of neurons."""
+    try:
+        vals = tuple(float(v) for v in str(text).split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--leak takes comma-separated numbers, got {text!r}"
+                                         ) from None
+    if not vals or not all(0.0 < v <= 1.0 for v in vals):
+        raise argparse.ArgumentTypeError(f"leak rates must lie in (0, 1], got {text!r}")
+    return vals
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -49,6 +69,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         choices=["kurtosis", "sparseness", "slowness"])
     parser.add_argument("--sfa-cutoff", default="1e-8",
                         help="relative whitening cutoff, or 'auto' (default: %(default)s)")
+    parser.add_argument("--leak", type=parse_leak, default=PAPER_LEAK,
+                        help="leak rates of the room-cell reservoir, one per half "
+                             "(default: SMC09's 0.05,0.15)")
+    parser.add_argument("--leak-sweep", type=int, default=0, choices=[0, 1],
+                        help="also fit a 4x4 grid of leak pairs and report each")
     parser.add_argument("--hold", type=int, default=5,
                         help="recovered = right for this many consecutive ticks")
     parser.add_argument("--figures", type=int, default=1, choices=[0, 1], help="write PNGs")
@@ -169,7 +194,7 @@ def run(args: argparse.Namespace) -> dict:
     rooms, kid_rooms = _room_masks(rec), _room_masks(rec_kid)
     U, U_kid = rec.sensors, rec_kid.sensors
 
-    configs = {"paper": PAPER_LEAK, "corridor": CORRIDOR_LEAK}
+    configs = {"paper": tuple(args.leak), "corridor": CORRIDOR_LEAK}
     per: dict[str, list[dict[str, Any]]] = {k: [] for k in configs}
     keep: dict[str, dict[str, Any]] = {}
     t_fit = 0.0
@@ -194,6 +219,8 @@ def run(args: argparse.Namespace) -> dict:
                 per[name].append({k: v for k, v in res.items()
                                   if not isinstance(v, np.ndarray | M.BinaryCell)})
                 bar.update()
+    sweep = (_leak_sweep(args, neurons, restarts, U, rooms, n_train, U_kid, kid_rooms, events,
+                         moved) if args.leak_sweep else None)
 
     def summary(name: str, key: str) -> dict[str, Any]:
         vals = [r[key] for r in per[name]]
@@ -212,7 +239,8 @@ def run(args: argparse.Namespace) -> dict:
         "room_changes": int(np.sum(np.diff(rec.region.astype(int)) != 0)),
         "region_occupancy": {n: float(np.mean(rec.region == i))
                              for i, n in enumerate(rec.region_names)},
-        # headline numbers (SMC09 leaks 0.05/0.15 unless stated)
+        "leak": list(configs["paper"]),
+        # headline numbers (leaks --leak, SMC09's 0.05/0.15 by default, unless stated)
         "room_cell_test_balanced_accuracy": paper_room["mean"],
         "room_cell_test_balanced_accuracy_sd": paper_room["sd"],
         "kidnap_recovery_ticks": paper_kid["mean"],
@@ -221,7 +249,7 @@ def run(args: argparse.Namespace) -> dict:
         "corridor_cell_test_balanced_accuracy_sd": cor_cell["sd"],
         "kidnap_events": [{"tick": e - n_train, "kind": k, "changed_room": c}
                           for e, k, c in zip(events, kinds, moved)],
-        "leak_0.05_0.15": {k: summary("paper", k) for k in
+        _leak_key(configs["paper"]): {k: summary("paper", k) for k in
                            ("room_cell_test_balanced_accuracy", "kidnap_recovery_ticks",
                             "kidnap_recovery_ticks_max", "corridor_cell_test_balanced_accuracy",
                             "sfa_supervised_readout_test_balanced_accuracy")},
@@ -233,6 +261,11 @@ def run(args: argparse.Namespace) -> dict:
         "targets": TARGETS,
         "timing_s": {"record": t_rec, "fit_total": t_fit},
     }
+    if sweep is not None:
+        metrics["leak_sweep"] = sweep["rows"]
+        metrics["leak_sweep_meeting_targets"] = [r["leak"] for r in sweep["rows"]
+                                                 if r["meets_targets"]]
+        metrics["timing_s"]["leak_sweep"] = sweep["seconds"]
     np.savez_compressed(
         out / "run.npz", t=rec.t, x=rec.x, y=rec.y, label=rec.label, region=rec.region,
         sensors=U, n_train=n_train, Y=keep["paper"]["Y"], Ysfa=keep["paper"]["Ysfa"],
@@ -240,12 +273,83 @@ def run(args: argparse.Namespace) -> dict:
         label_kid=rec_kid.label, kidnap_ticks=np.array(events),
         Y_corridor_leaks=keep["corridor"]["Y"])
     if args.figures:
-        _figures(out, arena, rec, rec_kid, n_train, events, keep)
+        _figures(out, arena, rec, rec_kid, n_train, events, keep, configs["paper"])
+        if sweep is not None:
+            _sweep_figure(out, sweep["rows"])
     write_metrics(out, metrics)
     return metrics
 
 
-def _figures(out, arena, rec, rec_kid, n_train, events, keep) -> None:
+def _leak_key(leak: tuple[float, ...]) -> str:
+    return "leak_" + "_".join(f"{v:g}" for v in leak)
+
+
+def _leak_sweep(args: argparse.Namespace, neurons: int, restarts: int, U: np.ndarray,
+                rooms: dict[str, np.ndarray], n_train: int, U_kid: np.ndarray,
+                kid_rooms: dict[str, np.ndarray], events: list[int], moved: list[bool]
+                ) -> dict[str, Any]:
+    """Room cell and kidnapping recovery for each leak pair of the grid, over the seeds."""
+    leaks = [(a, b) for a in SWEEP_SLOW for b in SWEEP_FAST]
+    scores: dict[tuple[float, float], list[tuple[float, float]]] = {lk: [] for lk in leaks}
+    t0 = time.perf_counter()
+    with Progress(args.seeds, "two-rooms leak sweep") as bar:
+        for i in range(args.seeds):
+            base = RCSFAICA.smc09(n_reservoir=neurons, seed=args.seed + i, n_sfa=args.n_sfa,
+                                  n_ica=args.n_ica, ica_restarts=restarts,
+                                  ica_score=args.ica_score,
+                                  sfa_cutoff=sfa_cutoff(args.sfa_cutoff)).params
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ICAConvergenceWarning)
+                models = fit_leak_sweep(U[:n_train], leaks, base)
+            for lk, model in zip(leaks, models):
+                r = _evaluate(model, U, rooms, n_train, U_kid, kid_rooms, events, moved,
+                              args.hold)
+                scores[lk].append((r["room_cell_test_balanced_accuracy"],
+                                   r["kidnap_recovery_ticks"]))
+            bar.update()
+    rows = []
+    for lk in leaks:
+        room, rec = (mean_sd([v[j] for v in scores[lk]]) for j in (0, 1))
+        rows.append({"leak": list(lk), "room_cell_test_balanced_accuracy": room[0],
+                     "room_cell_test_balanced_accuracy_sd": room[1],
+                     "kidnap_recovery_ticks": rec[0], "kidnap_recovery_ticks_sd": rec[1],
+                     "meets_targets": bool(
+                         room[0] >= TARGETS["room_cell_test_balanced_accuracy"]
+                         and rec[0] <= TARGETS["kidnap_recovery_ticks"])})
+    return {"rows": rows, "seconds": time.perf_counter() - t0}
+
+
+def _sweep_figure(out, rows: list[dict[str, Any]]) -> None:
+    import matplotlib.pyplot as plt
+
+    grid = {(r["leak"][0], r["leak"][1]): r for r in rows}
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+    for ax, key, label, cmap in (
+            (axes[0], "room_cell_test_balanced_accuracy", "room cell: balanced accuracy (test)",
+             "viridis"),
+            (axes[1], "kidnap_recovery_ticks", "kidnapping: ticks to recover", "viridis_r")):
+        Z = np.array([[grid[(a, b)][key] for b in SWEEP_FAST] for a in SWEEP_SLOW])
+        im = ax.imshow(Z, cmap=cmap, origin="lower", aspect="auto")
+        for i, a in enumerate(SWEEP_SLOW):
+            for j, b in enumerate(SWEEP_FAST):
+                r = grid[(a, b)]
+                ax.text(j, i, f"{Z[i, j]:.3g}", ha="center", va="center", fontsize=8,
+                        color="w", fontweight="bold" if r["meets_targets"] else "normal")
+        ax.set_xticks(range(len(SWEEP_FAST)), [f"{b:g}" for b in SWEEP_FAST])
+        ax.set_yticks(range(len(SWEEP_SLOW)), [f"{a:g}" for a in SWEEP_SLOW])
+        ax.set_xlabel("leak of the fast half")
+        ax.set_ylabel("leak of the slow half")
+        ax.set_title(label, fontsize=10)
+        fig.colorbar(im, ax=ax, shrink=0.85)
+    fig.suptitle(f"leak sweep (bold: room cell >= {TARGETS['room_cell_test_balanced_accuracy']}"
+                 f" and recovery <= {TARGETS['kidnap_recovery_ticks']} ticks); SMC09: 0.05/0.15",
+                 fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out / "leak_sweep.png", dpi=110)
+    plt.close(fig)
+
+
+def _figures(out, arena, rec, rec_kid, n_train, events, keep, leak) -> None:
     import matplotlib.pyplot as plt
 
     from hippo.plots.perception import plot_place_cell
@@ -258,7 +362,8 @@ def _figures(out, arena, rec, rec_kid, n_train, events, keep) -> None:
     figs = {
         "fig5_room_cell_train.png": plot_place_cell(
             arena, xy[tr], lab[tr], sign * p["Y"][tr, j],
-            title=f"room cell (ICA unit {j + 1}) on training data, leaks 0.05/0.15"),
+            title=f"room cell (ICA unit {j + 1}) on training data, leaks "
+                  f"{'/'.join(f'{v:g}' for v in leak)}"),
         "fig6_room_cell_test.png": plot_place_cell(
             arena, xy[te], lab[te], sign * p["Y"][te, j], t=np.arange(n_train, len(rec)),
             title=f"room cell (ICA unit {j + 1}) on test data: balanced accuracy "
