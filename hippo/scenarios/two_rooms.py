@@ -333,8 +333,11 @@ def _sweep_figure(out, rows: list[dict[str, Any]]) -> None:
         for i, a in enumerate(SWEEP_SLOW):
             for j, b in enumerate(SWEEP_FAST):
                 r = grid[(a, b)]
+                rgb = im.cmap(im.norm(Z[i, j]))[:3]
+                dark = 0.299 * rgb[0] + 0.587 * rgb[1] + 0.114 * rgb[2] < 0.55
                 ax.text(j, i, f"{Z[i, j]:.3g}", ha="center", va="center", fontsize=8,
-                        color="w", fontweight="bold" if r["meets_targets"] else "normal")
+                        color="w" if dark else "k",
+                        fontweight="bold" if r["meets_targets"] else "normal")
         ax.set_xticks(range(len(SWEEP_FAST)), [f"{b:g}" for b in SWEEP_FAST])
         ax.set_yticks(range(len(SWEEP_SLOW)), [f"{a:g}" for a in SWEEP_SLOW])
         ax.set_xlabel("leak of the fast half")
