@@ -28,6 +28,12 @@ whole perfect maze again and again, like ICANN09's exploring controller; random 
 (``--rho 0.008``) leave parts of the maze unvisited for long stretches.
 
 Ablation (ICANN09 §4): the same run without the reservoir, quadratic SFA on the 17 inputs.
+
+Whitening cutoff: ``--sfa-cutoff 1e-6`` by default (keeps ~210 of the 417 reservoir
+directions). Over reservoir seeds 0-9 it gave 55.4 ± 1.5 localized units, 0.48 exact and 0.82
+within-one-step decoding, against 53.3 ± 2.0, 0.44 and 0.80 with SFA's general default 1e-8
+(which the unsupervised ``auto`` choice also picks). It was chosen among 1e-4 ... 1e-10 on
+seed 0, checked on seed 1, and held on seeds 2-9. ICANN09 gives no cutoff.
 """
 
 from __future__ import annotations
@@ -64,8 +70,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--ica-restarts", type=int, default=3)
     parser.add_argument("--ica-score", default="kurtosis",
                         choices=["kurtosis", "sparseness", "slowness"])
-    parser.add_argument("--sfa-cutoff", default="1e-8",
-                        help="relative whitening cutoff, or 'auto' (default: %(default)s)")
+    parser.add_argument("--sfa-cutoff", default="1e-6",
+                        help="relative whitening cutoff, or 'auto' (default: %(default)s; "
+                             "the SFA default 1e-8 gives ~2 fewer localized units here)")
     parser.add_argument("--threshold", type=float, default=M.ICANN09_THRESHOLD,
                         help="localization threshold in training s.d. (ICANN09: 4.5)")
     parser.add_argument("--ablation", type=int, default=1, choices=[0, 1],
