@@ -10,13 +10,18 @@ calls into each library's own setter.
 from __future__ import annotations
 
 import os
-from collections.abc import Iterator
+import threading
+from collections.abc import Callable, Iterable, Iterator
+from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
+from typing import Any, TypeVar
 
 import numpy as np  # noqa: F401  (loads the BLAS that threadpoolctl then finds)
 from threadpoolctl import ThreadpoolController
 
 _controller: ThreadpoolController | None = None
+_local = threading.local()
+T = TypeVar("T")
 
 
 def _get_controller() -> ThreadpoolController:
@@ -52,3 +57,26 @@ def n_workers(requested: int | None = None) -> int:
     except AttributeError:  # pragma: no cover - not on Linux
         cores = os.cpu_count() or 1
     return max(1, cores)
+
+
+def parallel_map(fn: Callable[[Any], T], items: Iterable[Any], workers: int | None = None
+                 ) -> list[T]:
+    """``[fn(x) for x in items]`` on up to ``workers`` threads (default: the usable cores), each
+    with single-threaded BLAS; results in the order of ``items``.
+
+    The numbers do not depend on ``workers``: with one worker, or when called from inside
+    another ``parallel_map`` (no nested pools), the items run one after the other, also with
+    single-threaded BLAS.
+    """
+    items = list(items)
+    k = min(n_workers(workers), len(items))
+    if k <= 1 or getattr(_local, "worker", False):
+        with single_threaded_blas():
+            return [fn(x) for x in items]
+
+    def run(x: Any) -> T:
+        _local.worker = True
+        return fn(x)
+
+    with single_threaded_blas(), ThreadPoolExecutor(k) as pool:
+        return list(pool.map(run, items))

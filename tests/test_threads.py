@@ -28,3 +28,25 @@ def test_n_workers():
     assert n_workers() >= 1
     with pytest.raises(ValueError, match="workers"):
         n_workers(0)
+
+
+def test_parallel_map_keeps_order_and_does_not_nest():
+    import threading
+
+    from hippo._threads import parallel_map
+
+    seen: list[str] = []
+
+    def inner(x: int) -> int:
+        seen.append(threading.current_thread().name)
+        return x * x
+
+    def outer(x: int) -> list[int]:
+        return parallel_map(inner, range(x), workers=2)
+
+    assert parallel_map(lambda x: x + 1, range(7), workers=2) == list(range(1, 8))
+    out = parallel_map(outer, [3, 4], workers=2)
+    assert out == [[0, 1, 4], [0, 1, 4, 9]]
+    # the inner maps ran on the outer workers themselves: no pool inside a pool
+    assert len(set(seen)) <= 2 and all(not n.startswith("MainThread") for n in seen)
+    assert parallel_map(inner, [], workers=2) == []

@@ -18,7 +18,8 @@ Additions beyond the papers:
   training outputs (``"kurtosis"``: Σ|excess kurtosis|, the objective the cube non-linearity
   climbs; ``"sparseness"``: Σ(1 - E|s|); ``"slowness"``: minus the smallest Δ(s_i) = ⟨ṡ_i²⟩,
   i.e. prefer the rotation with the slowest single unit). ICA on the same SFA outputs lands in
-  different local optima, so restarts are cheap insurance;
+  different local optima, so restarts are cheap insurance; they run on parallel threads
+  (``workers``), with the same result as one after the other;
 * whitening is skipped when the input is already white (SFA outputs are, on their training data).
 
 Outputs are unit-variance on the data the ICA was fitted on (``output_std_`` = 1), so the
@@ -35,6 +36,7 @@ import numpy as np
 import scipy.linalg
 
 from hippo._checks import check_finite
+from hippo._threads import parallel_map
 
 SCORES = ("kurtosis", "sparseness", "slowness")
 
@@ -59,6 +61,8 @@ class ICAParams:
     #: "auto" (skip when the input is already white), True, or False
     whiten: bool | str = "auto"
     seed: int = 0
+    #: threads the restarts run on (None: the usable cores); the result does not depend on it
+    workers: int | None = None
 
     def __post_init__(self) -> None:
         if self.n_components is not None and int(self.n_components) < 1:
@@ -74,6 +78,8 @@ class ICAParams:
             raise ValueError(f"n_restarts must be >= 1, got {self.n_restarts}")
         if self.score not in SCORES:
             raise ValueError(f"score must be one of {SCORES}, got {self.score!r}")
+        if self.workers is not None and int(self.workers) < 1:
+            raise ValueError(f"workers must be >= 1 or None, got {self.workers}")
         if self.whiten not in ("auto", True, False):
             raise ValueError(f"whiten must be 'auto', True or False, got {self.whiten!r}")
 
@@ -216,14 +222,16 @@ class FastICA:
 
         rng = np.random.default_rng(p.seed)
         solver = _fastica_symmetric if p.algorithm == "symmetric" else _fastica_deflation
+        starts = [rng.standard_normal((k, k)) for _ in range(int(p.n_restarts))]
+
+        def restart(W0: np.ndarray) -> tuple[float, np.ndarray, int, bool, float]:
+            W, n_iter, ok, lim = solver(Z, W0, int(p.max_iter), float(p.tol))
+            return score_outputs((W @ Z).T, p.score), W, n_iter, ok, lim
+
         best = None
         scores, failed = [], 0
-        for _ in range(int(p.n_restarts)):
-            W0 = rng.standard_normal((k, k))
-            W, n_iter, ok, lim = solver(Z, W0, int(p.max_iter), float(p.tol))
+        for s, W, n_iter, ok, lim in parallel_map(restart, starts, p.workers):
             failed += not ok
-            S = (W @ Z).T
-            s = score_outputs(S, p.score)
             scores.append(s)
             if best is None or s > best[0]:
                 best = (s, W, n_iter, ok, lim)

@@ -43,7 +43,7 @@ import numpy as np
 import torch
 
 from hippo._checks import check_finite
-from hippo._threads import n_workers, single_threaded_blas
+from hippo._threads import n_workers, parallel_map, single_threaded_blas
 from hippo.io import CorruptFileError, load_npz, save_npz
 from hippo.perception.ica import FastICA, ICAParams
 from hippo.perception.resample import Decimator, hold
@@ -481,7 +481,5 @@ def fit_leak_sweep(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams |
         Xb = states[b]
         return m._fit_features(np.concatenate([Ud.astype(Xb.dtype), Xb], axis=1))
 
-    if k == 1:
-        return [fit_one(b) for b in range(len(leaks))]
-    with single_threaded_blas(), _torch_threads(1), ThreadPoolExecutor(k) as pool:
-        return list(pool.map(fit_one, range(len(leaks))))
+    with _torch_threads(1):
+        return parallel_map(fit_one, range(len(leaks)), k)

@@ -89,3 +89,15 @@ def test_bad_input():
         FastICA().fit(np.full((10, 2), np.nan))
     with pytest.raises(ValueError, match="shape"):
         FastICA(seed=0).fit(S).transform(S[:, :2])
+
+
+def test_restarts_on_threads_give_the_same_result():
+    rng = np.random.default_rng(5)
+    S = np.column_stack([rng.laplace(size=3000), rng.uniform(-1, 1, 3000), rng.laplace(size=3000)])
+    X = S @ rng.standard_normal((3, 3))
+    one = FastICA(n_components=3, n_restarts=5, seed=2, workers=1).fit(X)
+    two = FastICA(n_components=3, n_restarts=5, seed=2, workers=2).fit(X)
+    np.testing.assert_array_equal(one.components_, two.components_)
+    np.testing.assert_array_equal(one.restart_scores_, two.restart_scores_)
+    with pytest.raises(ValueError, match="workers"):
+        ICAParams(workers=0)
