@@ -126,9 +126,8 @@ def _loop_batched_np(drive: np.ndarray, W: np.ndarray, A: np.ndarray, x: np.ndar
     """B leak configurations: ``tanh(A ⊙ (x @ W_resᵀ + drive[t]) + (1 - A) ⊙ x)``.
 
     ``drive`` is ``W_in u`` (T, B or 1, N), ``A`` (B, N), ``x`` (B, N), ``states`` (B, T, N). The
-    states are kept as columns, ``W_res @ xᵀ``: BLAS then streams ``W_res`` once per tick for
-    the whole batch, and splits the product over threads (about 2x faster than ``x @ W_resᵀ``,
-    whose small row count makes OpenBLAS re-pack ``W_res`` every tick).
+    states are kept as columns, ``W_res @ xᵀ`` (with OpenBLAS on 2 threads and B = 16, about
+    12 % faster per tick than ``x @ W_resᵀ``), and written straight in the returned layout.
     """
     xT = np.ascontiguousarray(x.T)
     AT = np.ascontiguousarray(A.T)
