@@ -226,8 +226,9 @@ class SFA:
         return self
 
     def accumulate(self, X: np.ndarray) -> list[SFAMoments]:
-        """Checked ``X`` summarised chunk by chunk: the moments ``fit`` learns from. One
+        """``X`` (T, d) summarised chunk by chunk: the moments ``fit`` learns from. One
         :class:`SFAMoments`, or two (the first 80 % and the rest) for ``cutoff="auto"``."""
+        X = self._check_X(X)
         self._prepare(X)
         T = X.shape[0]
         split = self.auto_split(T)
