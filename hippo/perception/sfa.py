@@ -124,52 +124,46 @@ class SFAMoments:
         X = np.asarray(X)
         if X.ndim != 2 or X.shape[1] != self.n_features:
             raise ValueError(f"chunk must have shape (k, {self.n_features}), got {X.shape}")
-        k = X.shape[0]
-        if k == 0:
+        if X.shape[0] == 0:
             return self
+        chunk = SFAMoments(self.n_features)
         Xd = np.array(X, dtype=np.float64)            # own float64 copy, centred in place below
-        if k > 1:
-            D = np.diff(Xd, axis=0)
-            self.diff_scatter += D.T @ D
-            self.n_diff += k - 1
+        D = np.diff(Xd, axis=0)
+        chunk.diff_scatter, chunk.n_diff = D.T @ D, D.shape[0]
+        chunk.first, chunk.last = Xd[0].copy(), Xd[-1].copy()
+        chunk.n, chunk.mean = Xd.shape[0], Xd.mean(axis=0)
+        Xd -= chunk.mean
+        chunk.scatter = Xd.T @ Xd
+        self._absorb(chunk)
+        return self
+
+    def _absorb(self, part: SFAMoments) -> None:
+        """Append the moments of ``part``, the series that follows this one: the difference
+        across the boundary, then Chan's pairwise update of mean and scatter."""
+        if part.n == 0:
+            return
+        self.diff_scatter += part.diff_scatter
+        self.n_diff += part.n_diff
         if self.last is not None:
-            b = Xd[0] - self.last
+            b = part.first - self.last
             self.diff_scatter += np.outer(b, b)
             self.n_diff += 1
         else:
-            self.first = Xd[0].copy()
-        self.last = Xd[-1].copy()
-        m = Xd.mean(axis=0)
-        Xd -= m
-        self._combine(k, m, Xd.T @ Xd)
-        return self
-
-    def _combine(self, k: int, m: np.ndarray, S: np.ndarray) -> None:
-        n = self.n
-        total = n + k
-        delta = m - self.mean
-        self.mean = self.mean + delta * (k / total)
-        self.scatter += S + np.outer(delta, delta) * (n * k / total)
-        self.n = total
+            self.first = part.first
+        n, k = self.n, part.n
+        delta = part.mean - self.mean
+        self.mean = self.mean + delta * (k / (n + k))
+        self.scatter += part.scatter + np.outer(delta, delta) * (n * k / (n + k))
+        self.n = n + k
+        self.last = part.last
 
     def merged(self, later: SFAMoments) -> SFAMoments:
         """The moments of this series followed by ``later`` (a new object)."""
         if later.n_features != self.n_features:
             raise ValueError("moments of different dimensions cannot be merged")
         out = SFAMoments(self.n_features)
-        for part in (self, later):
-            if part.n == 0:
-                continue
-            if out.last is not None:
-                b = part.first - out.last
-                out.diff_scatter += np.outer(b, b)
-                out.n_diff += 1
-            else:
-                out.first = part.first
-            out.diff_scatter += part.diff_scatter
-            out.n_diff += part.n_diff
-            out._combine(part.n, part.mean, part.scatter)
-            out.last = part.last
+        out._absorb(self)
+        out._absorb(later)
         return out
 
     def scatter_about(self, center: np.ndarray) -> np.ndarray:
