@@ -43,6 +43,7 @@ import numpy as np
 import torch
 
 from hippo._checks import check_finite
+from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo._threads import n_workers, parallel_map, single_threaded_blas
 from hippo.io import CorruptFileError, load_npz, save_npz
 from hippo.perception.ica import FastICA, ICAParams
@@ -130,7 +131,7 @@ ICANN09 = RCSFAICAParams(n_inputs=17, downsample=50, n_reservoir=400, leak=0.6,
                          n_sfa=70, n_ica=70)
 
 
-class RCSFAICA:
+class RCSFAICA(ParamsEstimator):
     """Reservoir → linear SFA → FastICA place cells (SMC09 Fig. 1; ICANN09 Fig. 1).
 
     ``RCSFAICA(params, **overrides)`` stores ``params`` (a :class:`RCSFAICAParams`, default
@@ -162,9 +163,6 @@ class RCSFAICA:
         """ICANN09 settings (maze E1, 17 sensors): see :data:`ICANN09`."""
         return cls(ICANN09, **overrides)
 
-    def get_params(self) -> dict[str, Any]:
-        return asdict(self.params)
-
     # ------------------------------------------------------------------ input handling
     def _check_U(self, U: Any) -> np.ndarray:
         U = np.asarray(U)
@@ -195,7 +193,7 @@ class RCSFAICA:
         return Reservoir(p.reservoir_params(), dtype=p.dtype, device=p.device)
 
     # ------------------------------------------------------------------ learning
-    def fit(self, U: np.ndarray) -> RCSFAICA:
+    def fit(self, U: np.ndarray, y: None = None) -> RCSFAICA:
         """Learn SFA then ICA on a recording ``U`` (T, n_inputs) of sensor values."""
         U = self._check_U(U)
         p = self.params
@@ -305,7 +303,8 @@ class RCSFAICA:
         dec = self._decimator()
         return dec.sample_ticks(T), float(dec.delay) if dec.factor > 1 else 0.0
 
-    def fit_transform(self, U: np.ndarray, **kw: Any):
+    def fit_transform(self, U: np.ndarray, y: None = None, **kw: Any):
+        """``fit(U)``, then ``transform(U, **kw)`` (``y`` is ignored, as in scikit-learn)."""
         return self.fit(U).transform(U, **kw)
 
     # ------------------------------------------------------------------ online
@@ -431,7 +430,7 @@ class RCSFAICA:
     # ------------------------------------------------------------------ misc
     def _check_fitted(self) -> None:
         if not hasattr(self, "ica_"):
-            raise RuntimeError("RCSFAICA is not fitted yet; call fit(U) first")
+            raise NotFittedError("RCSFAICA is not fitted yet; call fit(U) first")
 
     def __repr__(self) -> str:
         p = self.params
