@@ -17,7 +17,6 @@ import pstats
 import time
 
 import numpy as np
-import torch
 
 from hippo.agent import Agent, AgentParams
 from hippo.cognitive_map import DriveParams, PlannerParams
@@ -58,7 +57,6 @@ def main() -> None:
     ap.add_argument("--ticks", type=int, default=10000)
     ap.add_argument("--profile", action="store_true")
     a = ap.parse_args()
-    torch.set_num_threads(1)
     os.environ["HIPPO_QUIET"] = "1"
     if a.profile:
         world, agent, obs = setup("learned")

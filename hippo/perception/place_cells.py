@@ -40,7 +40,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import torch
 
 from hippo._checks import check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
@@ -180,7 +179,7 @@ class RCSFAICA(ParamsEstimator):
         Ud = U if downsampled else self._decimator().offline(U)
         if self.reservoir_ is None:
             return Ud
-        X = self.reservoir_.run(Ud).cpu().numpy()
+        X = self.reservoir_.run(Ud)
         return np.concatenate([Ud.astype(X.dtype), X], axis=1)
 
     def _decimator(self) -> Decimator:
@@ -228,7 +227,7 @@ class RCSFAICA(ParamsEstimator):
         with single_threaded_blas(), ThreadPoolExecutor(1) as pool:
             pending = []
             for t0, t1 in pairwise(bounds):
-                S = res.run(Ud[t0:t1], x0=x).cpu().numpy()
+                S = res.run(Ud[t0:t1], x0=x)
                 X[t0:t1, n_u:] = S
                 x = S[-1]
                 if t0 >= w:
@@ -464,10 +463,9 @@ def fit_leak_sweep(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams |
     Ud = template._decimator().offline(U)
     k = min(n_workers(workers), len(leaks))
     states: list[np.ndarray] = []
-    with torch.inference_mode():
-        for g in range(0, len(leaks), _SWEEP_BATCH):
-            S = res.run(Ud, leak=A[g:g + _SWEEP_BATCH], threads=k).cpu().numpy()  # (b, T, N)
-            states.extend(S)
+    for g in range(0, len(leaks), _SWEEP_BATCH):
+        S = res.run(Ud, leak=A[g:g + _SWEEP_BATCH], threads=k)  # (b, T, N)
+        states.extend(S)
 
     def fit_one(b: int) -> RCSFAICA:
         lk = leaks[b]
