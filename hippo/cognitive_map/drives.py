@@ -38,7 +38,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from hippo._checks import check_positive, check_range
+from hippo._checks import check_fields, check_positive, check_range
 from hippo.cognitive_map.graph import Transition, as_transition
 from hippo.io import CorruptFileError, load_json, save_json
 
@@ -61,6 +61,7 @@ class DriveParams:
     initial: float = 0.0
 
     def __post_init__(self) -> None:
+        check_fields(self)
         check_positive("DriveParams.epsilon", self.epsilon, allow_zero=True)
         check_range("DriveParams.learning_rate", self.learning_rate, 0.0, 1.0, closed="right")
         check_range("DriveParams.extinction", self.extinction, 0.0, 1.0)

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import json
 import os
+import warnings
 from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import asdict, dataclass, fields, replace
@@ -41,16 +42,28 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite
+from hippo._checks import check_choice, check_fields, check_finite, check_int
 from hippo._threads import n_workers, parallel_map, single_threaded_blas
 from hippo.io import CorruptFileError, load_npz, save_npz
 from hippo.perception.ica import FastICA, ICAParams
 from hippo.perception.resample import Decimator, hold
-from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
+from hippo.perception.reservoir import (
+    Reservoir,
+    ReservoirParams,
+    _check_device,
+    _leak_param,
+    _np_dtype,
+    expand_leak,
+)
 from hippo.perception.reservoir import _num_threads as _torch_threads
 from hippo.perception.sfa import SFA, SFAMoments, SFAParams, chunk_bounds
 
 FORMAT = "hippo.perception.RCSFAICA/1"
+
+
+class InputRangeWarning(RuntimeWarning):
+    """Readings outside the model's ``input_range`` were clipped (``out_of_range='warn'``)."""
+
 #: reservoir ticks per chunk when the harvest and the SFA moments run side by side
 _HARVEST_CHUNK = 2048
 #: leak configurations harvested together by ``fit_leak_sweep``
@@ -87,18 +100,33 @@ class RCSFAICAParams:
     seed: int = 0
     dtype: str = "float32"
     device: str = "cpu"
+    # input checks (see "Input policy" in the module docstring)
+    input_range: tuple[float, float] | None = (0.0, 1.0)
+    out_of_range: str = "error"
+    min_fit_ticks: int = 100
 
     def __post_init__(self) -> None:
-        if isinstance(self.leak, list):
-            object.__setattr__(self, "leak", tuple(self.leak))
-        if int(self.n_inputs) < 1:
-            raise ValueError(f"n_inputs must be >= 1, got {self.n_inputs}")
-        if int(self.downsample) < 1:
-            raise ValueError(f"downsample must be >= 1, got {self.downsample}")
-        if int(self.washout) < 0:
-            raise ValueError(f"washout must be >= 0, got {self.washout}")
-        if int(self.n_ica) > int(self.n_sfa):
+        object.__setattr__(self, "leak", _leak_param(self.leak))
+        if isinstance(self.input_range, list):
+            object.__setattr__(self, "input_range", tuple(self.input_range))
+        check_fields(self)
+        check_int("n_inputs", self.n_inputs, lo=1)
+        check_int("downsample", self.downsample, lo=1)
+        check_int("washout", self.washout, lo=0)
+        check_int("n_reservoir", self.n_reservoir, lo=1)
+        check_int("n_sfa", self.n_sfa, lo=1)
+        check_int("n_ica", self.n_ica, lo=1)
+        if self.n_ica > self.n_sfa:
             raise ValueError(f"n_ica={self.n_ica} exceeds n_sfa={self.n_sfa}")
+        check_int("min_fit_ticks", self.min_fit_ticks, lo=3)
+        if self.input_range is not None:
+            lo, hi = self.input_range
+            if not lo < hi:
+                raise ValueError(f"input_range must be (low, high) with low < high, got "
+                                 f"{self.input_range!r}")
+        check_choice("out_of_range", self.out_of_range, ("error", "warn", "clip"))
+        _np_dtype(self.dtype)
+        _check_device(self.device)
         # delegate the remaining checks to the layers' own parameter classes
         self.reservoir_params()
         self.sfa_params()
@@ -165,14 +193,50 @@ class RCSFAICA:
         return asdict(self.params)
 
     # ------------------------------------------------------------------ input handling
-    def _check_U(self, U: Any) -> np.ndarray:
+    def _check_U(self, U: Any, *, fitting: bool = False) -> np.ndarray:
         U = np.asarray(U)
         n = self.params.n_inputs
         if U.ndim != 2 or U.shape[1] != n:
             raise ValueError(f"sensor sequence U must have shape (T, {n}), got {U.shape}")
-        if not np.issubdtype(U.dtype, np.number) or np.issubdtype(U.dtype, np.complexfloating):
+        if (not np.issubdtype(U.dtype, np.number) or np.issubdtype(U.dtype, np.complexfloating)
+                or U.dtype.kind == "b"):
             raise ValueError(f"sensor sequence U must be real numbers, got dtype {U.dtype}")
-        return check_finite("sensor sequence U", U)
+        U = check_finite("sensor sequence U", U, keep_float32=True)
+        rng = self.params.input_range
+        if rng is not None and U.size and (U.min() < rng[0] or U.max() > rng[1]):
+            msg = (f"sensor sequence U holds readings outside input_range [{rng[0]:g}, "
+                   f"{rng[1]:g}] (min {U.min():g}, max {U.max():g})")
+            if fitting:
+                raise ValueError(msg + "; place cells are learned from sensor readings scaled to "
+                                 "input_range: rescale U, or set input_range to its true range")
+            U = self._out_of_range(U, msg)
+        return U
+
+    def _out_of_range(self, u: np.ndarray, msg: str) -> np.ndarray:
+        """Apply the ``out_of_range`` policy to inputs outside ``input_range``."""
+        policy = self.params.out_of_range
+        if policy == "error":
+            raise ValueError(msg + "; the model was fitted on readings in that range and would "
+                             "extrapolate (set out_of_range='clip' or 'warn' to clip instead)")
+        if policy == "warn":
+            warnings.warn(msg + "; clipped to the range", InputRangeWarning, stacklevel=3)
+        lo, hi = self.params.input_range  # type: ignore[misc]
+        return np.clip(u, lo, hi)
+
+    def _check_trainable(self, U: np.ndarray) -> None:
+        """Refuse recordings that cannot yield place cells: too short, or no sensor varies."""
+        p = self.params
+        n_updates = -(-U.shape[0] // p.downsample) - p.washout
+        if n_updates < p.min_fit_ticks:
+            raise ValueError(
+                f"U has {U.shape[0]} ticks ({n_updates} reservoir updates after a washout of "
+                f"{p.washout} and down-sampling by {p.downsample}); fitting needs at least "
+                f"min_fit_ticks={p.min_fit_ticks} updates of exploration")
+        spread = U.max(axis=0) - U.min(axis=0)
+        if not (spread > 1e-9).any():
+            raise ValueError(
+                f"every sensor in U is constant (values {np.unique(U[0]).tolist()[:4]}): stuck "
+                "or disconnected sensors carry no information about place")
 
     def features(self, U: np.ndarray, *, downsampled: bool = False) -> np.ndarray:
         """SFA input ``[u(t); x(t+1)]`` for a recording ``U`` (at the down-sampled rate),
@@ -196,12 +260,9 @@ class RCSFAICA:
     # ------------------------------------------------------------------ learning
     def fit(self, U: np.ndarray) -> RCSFAICA:
         """Learn SFA then ICA on a recording ``U`` (T, n_inputs) of sensor values."""
-        U = self._check_U(U)
+        U = self._check_U(U, fitting=True)
+        self._check_trainable(U)
         p = self.params
-        need = (p.washout + 3) * p.downsample
-        if U.shape[0] < need:
-            raise ValueError(f"U has {U.shape[0]} ticks; at least {need} are needed "
-                             f"(washout {p.washout}, downsample {p.downsample})")
         self.reservoir_ = self._build_reservoir()
         self.n_features_in_ = p.n_inputs
         Ud = self._decimator().offline(U)
@@ -321,11 +382,20 @@ class RCSFAICA:
         activities (n_ica,) (a new array)."""
         self._check_fitted()
         n = self.params.n_inputs
-        u = np.asarray(u, dtype=float)
+        try:
+            u = np.asarray(u, dtype=float)
+        except (TypeError, ValueError):
+            raise ValueError(f"sensor vector u must be {n} real numbers, got {u!r}") from None
         if u.shape != (n,):
             raise ValueError(f"sensor vector u must have shape ({n},), got {u.shape}")
-        if not np.isfinite(u).all():
-            raise ValueError("sensor vector u contains NaN or inf")
+        # one cheap check per tick: NaN fails both comparisons
+        rng = self.params.input_range
+        lo, hi = (-np.inf, np.inf) if rng is None else rng
+        if not (u.min() >= lo and u.max() <= hi):
+            if not np.isfinite(u).all():
+                raise ValueError(f"sensor vector u contains NaN or inf: {u}")
+            u = self._out_of_range(u, f"sensor vector u = {u} lies outside input_range "
+                                      f"[{lo:g}, {hi:g}]")
         if self.params.downsample > 1:
             ud = self._dec.push(u)
             if ud is None:

@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 from scipy.cluster.vq import kmeans2
 
-from hippo._checks import check_finite, check_positive
+from hippo._checks import check_fields, check_finite, check_positive
 from hippo.io import CorruptFileError, load_npz, save_npz
 
 
@@ -42,6 +42,7 @@ class PrototypeParams:
     seed: int = 0
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if int(self.n_prototypes) < 1:
             raise ValueError(f"n_prototypes must be >= 1, got {self.n_prototypes}")
         if not 0.0 <= self.recruit_threshold < 1.0:
