@@ -23,6 +23,16 @@ adds each finished chunk to the SFA moments (:class:`~hippo.perception.sfa.SFAMo
 costs little more than the harvest; :func:`fit_leak_sweep` harvests many leak configurations
 as one batch and fits them on parallel threads.
 
+Input policy: sensor readings are expected in ``input_range`` (default ``(0, 1)``, the scale of
+:class:`~hippo.sim.World`'s IR readings; ``None`` accepts any finite value). :meth:`RCSFAICA.fit`
+refuses a recording with readings outside it, with fewer than ``min_fit_ticks`` reservoir updates
+after the washout (default 100, 20 s at 0.2 s), or whose every sensor is constant (stuck): none
+can yield place cells. A fitted model meeting readings outside the range in :meth:`step` or
+:meth:`transform` follows ``out_of_range``: ``"error"`` (default) raises ``ValueError``,
+``"warn"`` clips them to the range and emits :class:`InputRangeWarning`, ``"clip"`` clips them
+silently. A reading is never extrapolated (a linear readout of readings ×1e6 would give
+activities of ±1e4). NaN and inf are always refused.
+
 Optional input down-sampling (``downsample > 1``, ICANN09: 50) uses a causal anti-aliasing
 FIR (:mod:`hippo.perception.resample`); the reservoir then ticks once per ``downsample`` inputs
 and outputs are held in between.
