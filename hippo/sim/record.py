@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hippo.io import CorruptFileError, load_npz, save_npz
+from hippo.io import CorruptFileError, load_npz, save_figure, save_npz
 from hippo.progress import Progress
 from hippo.sim import arenas as arena_registry
 from hippo.sim.arena import Arena
@@ -171,6 +171,6 @@ def record_main(argv: Sequence[str]) -> int:
 
         fig = plot_trajectory(arena, rec)
         png = Path(a.out).with_suffix(".png")
-        fig.savefig(png, dpi=120)
+        save_figure(fig, png, dpi=120)
         print(f"wrote {png}", file=sys.stderr)
     return 0
