@@ -7,7 +7,6 @@ import json
 import os
 import tempfile
 import time
-import zipfile
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
@@ -107,11 +106,15 @@ def load_npz(path: str | os.PathLike, required: Iterable[str] = ()) -> dict[str,
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"no such file: {path}")
+    if not path.is_file():
+        raise CorruptFileError(f"{path} is not a file")
     try:
         with np.load(path, allow_pickle=False) as data:
+            if not isinstance(data, np.lib.npyio.NpzFile):
+                raise ValueError("a single .npy array, not an .npz archive")
             out = {k: data[k] for k in data.files}
-    except (zipfile.BadZipFile, OSError, EOFError, ValueError, KeyError) as exc:
-        raise CorruptFileError(f"{path} is not a readable .npz file ({exc})") from exc
+    except Exception as exc:  # zip, zlib, header, dtype, size: any failure is a corrupt file
+        raise CorruptFileError(f"{path} is not a readable .npz file ({exc!r:.300})") from exc
     missing = [k for k in required if k not in out]
     if missing:
         raise CorruptFileError(f"{path} lacks required array(s): {', '.join(missing)}")
@@ -137,10 +140,12 @@ def save_json(path: str | os.PathLike, obj: Any) -> Path:
 def load_json(path: str | os.PathLike) -> Any:
     """Read a JSON file, raising :class:`CorruptFileError` on malformed content."""
     path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"no such file: {path}")
     try:
-        return json.loads(path.read_text())
-    except json.JSONDecodeError as exc:
-        raise CorruptFileError(f"{path} is not valid JSON ({exc})") from exc
+        return json.loads(path.read_bytes().decode("utf-8"))
+    except (ValueError, RecursionError) as exc:  # JSON, UTF-8, or absurdly nested
+        raise CorruptFileError(f"{path} is not valid JSON ({exc!r:.300})") from exc
 
 
 def save_figure(fig: Any, path: str | os.PathLike, **kwargs: Any) -> Path:

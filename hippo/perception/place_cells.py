@@ -52,7 +52,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_choice, check_fields, check_finite, check_int
+from hippo._checks import check_array, check_choice, check_fields, check_finite, check_int
 from hippo._threads import n_workers, parallel_map, single_threaded_blas
 from hippo.io import CorruptFileError, load_npz, save_npz
 from hippo.perception.ica import FastICA, ICAParams
@@ -69,6 +69,10 @@ from hippo.perception.reservoir import _num_threads as _torch_threads
 from hippo.perception.sfa import SFA, SFAMoments, SFAParams, chunk_bounds
 
 FORMAT = "hippo.perception.RCSFAICA/1"
+
+
+_REQUIRED = ("format", "params", "sfa_mean", "sfa_scale", "sfa_W", "sfa_slowness", "ica_mean",
+             "ica_whitening", "ica_rotation", "output_std", "output_peak")
 
 
 class InputRangeWarning(RuntimeWarning):
@@ -447,62 +451,111 @@ class RCSFAICA:
 
     @classmethod
     def load(cls, path: str | os.PathLike) -> RCSFAICA:
-        """Read a model written by :meth:`save`; a damaged file raises ``CorruptFileError``
-        (a ``ValueError``) naming the problem."""
-        req = ("format", "params", "sfa_mean", "sfa_scale", "sfa_W", "sfa_slowness",
-               "ica_mean", "ica_whitening", "ica_rotation", "output_std", "output_peak")
-        a = load_npz(path, required=req)
-        if str(a["format"]) != FORMAT:
-            raise CorruptFileError(f"{path} is not an RCSFAICA model (format {a['format']!s})")
+        """Read a model written by :meth:`save`.
+
+        Nothing in the file is trusted: the format tag, the parameters (type- and range-checked
+        like the constructor's), and every array's dtype, shape (consistent with the
+        parameters and with each other) and finiteness, the reservoir's leak and spectral radius
+        against its parameters, scales and standard deviations > 0. A damaged file raises
+        :class:`~hippo.io.CorruptFileError` (a ``ValueError``) naming the problem; nothing is
+        half-loaded (the model is built only once every check passed).
+        """
+        a = load_npz(path, required=_REQUIRED)
+        try:
+            return cls._from_arrays(a)
+        except CorruptFileError as exc:
+            raise CorruptFileError(f"{path}: {exc}") from exc
+        except (ValueError, TypeError, KeyError, IndexError, OverflowError) as exc:
+            raise CorruptFileError(f"{path}: inconsistent model file ({exc})") from exc
+
+    @classmethod
+    def _from_arrays(cls, a: dict[str, np.ndarray]) -> RCSFAICA:
+        fmt = a["format"]
+        if fmt.dtype.kind != "U" or fmt.shape != () or str(fmt) != FORMAT:
+            raise CorruptFileError(f"not an RCSFAICA model (format {str(fmt)[:80]!r})")
+        if a["params"].dtype.kind != "U" or a["params"].shape != ():
+            raise CorruptFileError("the parameters are not a JSON string")
         try:
             raw = json.loads(str(a["params"]))
-            known = {f.name for f in fields(RCSFAICAParams)}
-            if isinstance(raw.get("leak"), list):
-                raw["leak"] = tuple(raw["leak"])
-            params = RCSFAICAParams(**{k: v for k, v in raw.items() if k in known})
-        except (json.JSONDecodeError, TypeError, ValueError) as exc:
-            raise CorruptFileError(f"{path} has unreadable parameters ({exc})") from exc
-        self = cls(params)
+        except json.JSONDecodeError as exc:
+            raise CorruptFileError(f"unreadable parameters ({exc})") from exc
+        if not isinstance(raw, dict):
+            raise CorruptFileError(f"the parameters are not a JSON object: {str(raw)[:80]}")
+        known = {f.name for f in fields(RCSFAICAParams)}
+        if isinstance(raw.get("input_range"), list):
+            raw["input_range"] = tuple(raw["input_range"])
         try:
-            if params.use_reservoir:
-                for k in ("W_in", "W_res", "leak"):
-                    if k not in a:
-                        raise CorruptFileError(f"{path} lacks required array(s): {k}")
-                self.reservoir_ = Reservoir.from_weights(
-                    a["W_in"], a["W_res"], a["leak"], spectral_radius=params.spectral_radius,
-                    dtype=params.dtype, device=params.device)
-            else:
-                self.reservoir_ = None
-            sfa = SFA(params.sfa_params())
-            sfa.mean_, sfa.scale_, sfa.W_ = a["sfa_mean"], a["sfa_scale"], a["sfa_W"]
-            sfa.slowness_ = a["sfa_slowness"]
-            sfa.cutoff_ = float(a.get("sfa_cutoff", np.nan))
-            sfa.n_whitened_ = int(a.get("sfa_n_whitened", -1))
-            if params.sfa_expansion == "quadratic":
-                sfa.pre_mean_, sfa.pre_scale_ = a["sfa_pre_mean"], a["sfa_pre_scale"]
-                sfa.n_features_in_ = sfa.pre_mean_.shape[0]
-            else:
-                sfa.n_features_in_ = sfa.mean_.shape[0]
-            ica = FastICA(params.ica_params())
-            ica.mean_, ica.whitening_, ica.rotation_ = (a["ica_mean"], a["ica_whitening"],
-                                                        a["ica_rotation"])
-            ica.components_ = ica.rotation_ @ ica.whitening_.T
-            ica.n_features_in_ = ica.mean_.shape[0]
-            ica.output_std_ = a["output_std"]
-            n_feat = params.n_inputs + (params.n_reservoir if params.use_reservoir else 0)
-            if (sfa.n_features_in_ != n_feat or sfa.W_.shape[1] != params.n_sfa
-                    or ica.components_.shape != (params.n_ica, params.n_sfa)):
-                raise CorruptFileError(f"{path}: array shapes do not match its parameters")
-        except KeyError as exc:
-            raise CorruptFileError(f"{path} lacks required array {exc}") from exc
-        except ValueError as exc:
-            if isinstance(exc, CorruptFileError):
-                raise
-            raise CorruptFileError(f"{path} holds inconsistent arrays ({exc})") from exc
+            params = RCSFAICAParams(**{k: v for k, v in raw.items() if k in known})
+        except (TypeError, ValueError) as exc:
+            raise CorruptFileError(f"bad parameters ({exc})") from exc
+        p = params
+
+        def arr(key: str, shape: tuple[int | None, ...], dtype: str = "float") -> np.ndarray:
+            if key not in a:
+                raise CorruptFileError(f"lacks required array {key!r}")
+            try:
+                return check_array(key, a[key], shape=shape, dtype=dtype)
+            except ValueError as exc:
+                raise CorruptFileError(str(exc)) from None
+
+        def positive(key: str, v: np.ndarray) -> np.ndarray:
+            if not (v > 0).all():
+                raise CorruptFileError(f"{key} must be > 0 everywhere, got min {v.min():g}")
+            return v
+
+        n_u, n_sfa, n_ica = p.n_inputs, p.n_sfa, p.n_ica
+        reservoir = None
+        if p.use_reservoir:
+            N = p.n_reservoir
+            W_in = arr("W_in", (N, n_u))
+            W_res = arr("W_res", (N, N))
+            leak = arr("leak", (N,))
+            if not np.array_equal(leak, expand_leak(p.leak, N)):
+                raise CorruptFileError(f"leak does not match the parameters' leak {p.leak}")
+            radius = float(np.max(np.abs(np.linalg.eigvals(W_res)))) if N else 0.0
+            if not abs(radius - p.spectral_radius) <= 1e-6 * max(1.0, p.spectral_radius):
+                raise CorruptFileError(f"W_res has spectral radius {radius:.6g}, its parameters "
+                                       f"say {p.spectral_radius}")
+            reservoir = Reservoir.from_weights(W_in, W_res, leak,
+                                               spectral_radius=p.spectral_radius,
+                                               dtype=p.dtype, device=p.device)
+        d_in = n_u + (p.n_reservoir if p.use_reservoir else 0)
+        sfa = SFA(p.sfa_params())
+        if p.sfa_expansion == "quadratic":
+            sfa.pre_mean_ = arr("sfa_pre_mean", (d_in,))
+            sfa.pre_scale_ = positive("sfa_pre_scale", arr("sfa_pre_scale", (d_in,)))
+            d = d_in + d_in * (d_in + 1) // 2
+        else:
+            d = d_in
+        sfa.n_features_in_ = d_in
+        sfa.mean_ = arr("sfa_mean", (d,))
+        sfa.scale_ = positive("sfa_scale", arr("sfa_scale", (d,)))
+        sfa.W_ = arr("sfa_W", (d, n_sfa))
+        sfa.slowness_ = arr("sfa_slowness", (n_sfa,))
+        cutoff = arr("sfa_cutoff", ()) if "sfa_cutoff" in a else np.array(np.nan)
+        sfa.cutoff_ = float(cutoff)
+        if "sfa_n_whitened" in a:
+            nw = int(arr("sfa_n_whitened", (), dtype="int"))
+            if not n_sfa <= nw <= d:
+                raise CorruptFileError(f"sfa_n_whitened={nw} must lie in [{n_sfa}, {d}]")
+            sfa.n_whitened_ = nw
+        else:
+            sfa.n_whitened_ = -1
+        ica = FastICA(p.ica_params())
+        ica.mean_ = arr("ica_mean", (n_sfa,))
+        ica.whitening_ = arr("ica_whitening", (n_sfa, n_ica))
+        ica.rotation_ = arr("ica_rotation", (n_ica, n_ica))
+        ica.components_ = ica.rotation_ @ ica.whitening_.T
+        ica.n_features_in_ = n_sfa
+        output_std = positive("output_std", arr("output_std", (n_ica,)))
+        output_peak = arr("output_peak", (n_ica,))
+        ica.output_std_ = output_std
+        self = cls(params)
+        self.reservoir_ = reservoir
         self.sfa_, self.ica_ = sfa, ica
         self.sfa_slowness_ = sfa.slowness_.copy()
-        self.n_features_in_ = params.n_inputs
-        self.output_std_, self.output_peak_ = a["output_std"], a["output_peak"]
+        self.n_features_in_ = n_u
+        self.output_std_, self.output_peak_ = output_std, output_peak
         self._compile()
         self.reset_state()
         return self
