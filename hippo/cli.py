@@ -70,11 +70,12 @@ def record_main(argv: Sequence[str]) -> int:
     if a.figure:
         from pathlib import Path
 
+        from hippo.io import save_figure
         from hippo.plots.sim import plot_trajectory
 
         fig, _ = plot_trajectory(arena, rec)
         png = Path(a.out).with_suffix(".png")
-        fig.savefig(png, dpi=120)
+        save_figure(fig, png, dpi=120)
         print(f"wrote {png}", file=sys.stderr)
     return 0
 
