@@ -197,11 +197,11 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
                                     "max_abs_error_pct": float(np.nanmax(np.abs(err))),
                                     "non_occurrence_after_s": float(np.nanmean(lags))}
 
-    fig = plot_fig6(rewarded, extinction, args.delay, by_delay,
+    fig, _ = plot_fig6(rewarded, extinction, args.delay, by_delay,
                     title=f"Timed prediction of the reward (learned delay {args.delay:g} s)")
     fig.savefig(Path(out) / "fig6_timing.png", dpi=110)
     plt.close(fig)
-    fig = plot_reproduction(delays, waits_all,
+    fig, _ = plot_reproduction(delays, waits_all,
                             reference={k: v for k, v in HIREL_TABLE1.items()},
                             title="Learned vs reproduced waits (closed loop)")
     fig.savefig(Path(out) / "reproduction.png", dpi=110)
