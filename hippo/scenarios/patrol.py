@@ -45,7 +45,7 @@ from hippo.scenarios._common import prepare_out, write_metrics
 from hippo.sim import World, arenas
 from hippo.tasks import (
     PLACE_STATES,
-    AngleLaps,
+    LapCounter,
     Log,
     Route,
     Session,
@@ -120,7 +120,7 @@ def run(args: argparse.Namespace) -> dict:
     agent = Agent(places, drives=dict.fromkeys(names, drive), params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)
     s = Session(world, agent, log, obs=tour[-1], phase=Phase.LEASH)
-    loop = AngleLaps((74.0, 56.0))
+    loop = LapCounter(loop_route)  # laps by progress along the taught route
 
     def laps() -> float:
         return loop.update(*s.truth.pose[:2])
