@@ -81,6 +81,13 @@ class BrainParams:
         reaches this fraction of the most active place's, as if it had entered ``C`` (0
         disables). Learned place cells split a stretch of track between prototypes that
         alternate from lap to lap; the taught one need not win on every pass.
+    forget: at every transition learned, each transition's strength is multiplied by this and
+        transitions below 0.05 are forgotten (``TransitionGraph.decay``; re-observing one resets
+        its strength to 1); the drives' links to forgotten transitions go with them. 1 (the
+        default): the map never forgets, as in HIREL's experiments.
+
+    Extinction of goal links (HIREL eq. 4's decay term) is a drive's parameter
+    (``DriveParams.extinction``, default 0): see :meth:`hippo.decision.Decider.check_wait`.
     """
 
     dt: float = 0.2
@@ -99,6 +106,7 @@ class BrainParams:
     cycle_window: float = 60.0
     cycle_explore: float = 20.0
     coactive: float = 0.6
+    forget: float = 1.0
     states: StateLayerParams = field(default_factory=StateLayerParams)
     spectral: SpectralParams = field(default_factory=SpectralParams)
     #: latency 0.4 s = one tick from decision to motion + one tick of proprioceptive debounce
@@ -117,7 +125,7 @@ class BrainParams:
             raise ValueError(f"proprio_ticks must be >= 1, got {self.proprio_ticks}")
         check_positive("settle_time", self.settle_time, allow_zero=True)
         check_positive("turn_limit", self.turn_limit)
-        for name in ("coactive", "leave_fraction", "stop_lead", "turn_discount"):
+        for name in ("coactive", "leave_fraction", "stop_lead", "turn_discount", "forget"):
             v = getattr(self, name)
             if not 0.0 <= v <= 1.0:
                 raise ValueError(f"{name} must lie in [0, 1], got {v}")
@@ -360,6 +368,8 @@ class Brain:
         dist = math.hypot(x1 - x0, y1 - y0)
         action = Action.wait() if wait or dist < 1e-6 else Action.move(
             math.atan2(y1 - y0, x1 - x0), dist)
+        if self.p.forget < 1.0 and self.graph.decay(self.p.forget):
+            self.drives.prune(self.graph)
         tr = self.graph.add_transition(prev, new, action, delay, time=self.t)
         self.graph.observe_position(new, (x1, y1))
         self.last_transition = tr
