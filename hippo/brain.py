@@ -41,6 +41,7 @@ from hippo.cognitive_map import Action, DriveParams, Drives, Planner, PlannerPar
 from hippo.decision import Decider
 from hippo.perception.states import StateEvent, StateLayer, StateLayerParams
 from hippo.places import PlaceSource
+from hippo.seeds import Seeds
 from hippo.sim.odometry import PathIntegrator
 from hippo.timing import NonOccurrenceParams, SpectralParams, TransitionParams
 from hippo.timing.chain import TimingChain, TimingStep
@@ -178,7 +179,8 @@ class Brain:
     occluded : ``occluded(obs) -> bool``: something is pressed against the robot and its
         distance sensors see only that (the teacher's block); the place cells then keep
         hearing the last clear view. Default: never.
-    seed : seeds the brain's own random choices (planner noise, exploration of known moves).
+    seed : the run's seed; the brain's own random choices (planner noise, exploration of known
+        moves) come from its stream ``"brain"`` (:mod:`hippo.seeds`), or from ``rng``.
     """
 
     def __init__(self, places: PlaceSource | None = None, *,
@@ -187,7 +189,7 @@ class Brain:
                  seed: int = 0, rng: np.random.Generator | None = None) -> None:
         self.places = places
         self.p = p = params or BrainParams()
-        self.rng = rng if rng is not None else np.random.default_rng([seed, 7])
+        self.rng = rng if rng is not None else Seeds(seed).generator("brain")
         self.layer = StateLayer(p.states, n_place=places.n_units if places is not None else 0)
         self.timing = TimingChain(p.spectral, p.transitions, p.non_occurrence)
         self.graph = TransitionGraph()
