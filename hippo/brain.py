@@ -205,26 +205,12 @@ class Brain:
         self._clear_view: np.ndarray | None = None
         self._reset_episode()
 
-    # the neural parts under their usual names
-    @property
-    def spectral(self):
-        return self.timing.spectral
-
-    @property
-    def cells(self):
-        return self.timing.cells
-
-    @property
-    def nonocc(self):
-        return self.timing.nonocc
-
-    @property
-    def mode(self) -> Mode:
-        return self.decide.mode
-
-    @property
-    def current(self) -> Transition | None:
-        return self.decide.current
+    # the neural parts under their usual names, and what the decider is doing
+    spectral = property(lambda self: self.timing.spectral, doc="the SpectralTiming")
+    cells = property(lambda self: self.timing.cells, doc="the TransitionCells")
+    nonocc = property(lambda self: self.timing.nonocc, doc="the NonOccurrence neurons")
+    mode = property(lambda self: self.decide.mode, doc="the motor Mode chosen")
+    current = property(lambda self: self.decide.current, doc="the transition executed")
 
     # -- episode bookkeeping ------------------------------------------------------------------
     def _reset_episode(self) -> None:

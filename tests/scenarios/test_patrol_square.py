@@ -3,8 +3,6 @@
 import importlib.util
 from pathlib import Path
 
-import pytest
-
 SCRIPT = Path(__file__).resolve().parents[2] / "scenarios" / "patrol_square.py"
 
 
@@ -29,9 +27,3 @@ def test_the_example_patrols_with_ground_truth_place_cells(tmp_path):
         assert all(abs(r - w["taught_s"]) <= 0.03 * w["taught_s"] for r in w["reproduced_s"])
     assert (tmp_path / "run.npz").exists() and (tmp_path / "metrics.json").exists()
 
-
-@pytest.mark.slow
-def test_the_example_patrols_with_learned_place_cells(tmp_path):
-    waits = _load().main(seed=0, out=str(tmp_path), quick=False)
-    stops = [r for w in waits.values() for r in w["reproduced_s"]]
-    assert len(stops) >= 3
