@@ -63,7 +63,8 @@ def check_shape(name: str, arr: np.ndarray, shape: tuple[int | None, ...]) -> np
     """Raise ``ValueError`` unless ``arr`` has dims matching ``shape`` (None = any size)."""
     a = np.asarray(arr)
     if a.ndim != len(shape) or any(s is not None and s != d for s, d in zip(shape, a.shape)):
-        want = "(" + ", ".join("*" if s is None else str(s) for s in shape) + ")"
+        want = "(" + ", ".join("*" if s is None else str(s) for s in shape) + (
+            ",)" if len(shape) == 1 else ")")
         raise ValueError(f"{name} must have shape {want}, got {a.shape}")
     return a
 
@@ -115,10 +116,11 @@ def check_real(name: str, value: Any) -> float:
 
 
 def check_array(name: str, value: Any, *, shape: tuple[int | None, ...] | None = None,
-                dtype: str = "float", finite: bool = True) -> np.ndarray:
+                dtype: str = "float", finite: bool = True,
+                max_abs: float | None = None) -> np.ndarray:
     """Check a loaded or given array: its kind (``float``: real numbers; ``int``: integers;
-    ``bool``), its ``shape`` (None = any size), and (numbers) finiteness. Returns a copy of
-    type float64 / int64 / bool."""
+    ``bool``), its ``shape`` (None = any size), (numbers) finiteness, and ``|value| <= max_abs``.
+    Returns a copy of type float64 / int64 / bool."""
     a = np.asarray(value)
     kind = a.dtype.kind
     if dtype == "float":
@@ -140,6 +142,9 @@ def check_array(name: str, value: Any, *, shape: tuple[int | None, ...] | None =
     if finite and dtype == "float" and not np.isfinite(a).all():
         bad = int(a.size - np.count_nonzero(np.isfinite(a)))
         raise ValueError(f"{name} contains {bad} non-finite value(s) (NaN or inf)")
+    if max_abs is not None and a.size and dtype != "bool" and np.abs(a).max() > max_abs:
+        raise ValueError(f"{name} holds a value of magnitude {np.abs(a).max():.3g}, beyond "
+                         f"{max_abs:g}: no fit produces it")
     return a
 
 
