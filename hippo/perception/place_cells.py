@@ -54,6 +54,7 @@ from typing import Any
 import numpy as np
 
 from hippo._checks import check_array, check_choice, check_fields, check_finite, check_int
+from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo._threads import n_workers, parallel_map, single_threaded_blas
 from hippo.io import CorruptFileError, load_npz, save_npz
 from hippo.perception.ica import FastICA, ICAParams
@@ -186,7 +187,7 @@ ICANN09 = RCSFAICAParams(n_inputs=17, downsample=50, n_reservoir=400, leak=0.6,
                          n_sfa=70, n_ica=70)
 
 
-class RCSFAICA:
+class RCSFAICA(ParamsEstimator):
     """Reservoir → linear SFA → FastICA place cells (SMC09 Fig. 1; ICANN09 Fig. 1).
 
     ``RCSFAICA(params, **overrides)`` stores ``params`` (a :class:`RCSFAICAParams`, default
@@ -217,9 +218,6 @@ class RCSFAICA:
     def icann09(cls, **overrides: Any) -> RCSFAICA:
         """ICANN09 settings (maze E1, 17 sensors): see :data:`ICANN09`."""
         return cls(ICANN09, **overrides)
-
-    def get_params(self) -> dict[str, Any]:
-        return asdict(self.params)
 
     # ------------------------------------------------------------------ input handling
     def _check_U(self, U: Any, *, fitting: bool = False) -> np.ndarray:
@@ -287,7 +285,7 @@ class RCSFAICA:
         return Reservoir(p.reservoir_params(), dtype=p.dtype, device=p.device)
 
     # ------------------------------------------------------------------ learning
-    def fit(self, U: np.ndarray) -> RCSFAICA:
+    def fit(self, U: np.ndarray, y: None = None) -> RCSFAICA:
         """Learn SFA then ICA on a recording ``U`` (T, n_inputs) of sensor values."""
         U = self._check_U(U, fitting=True)
         self._check_trainable(U)
@@ -394,7 +392,8 @@ class RCSFAICA:
         dec = self._decimator()
         return dec.sample_ticks(T), float(dec.delay) if dec.factor > 1 else 0.0
 
-    def fit_transform(self, U: np.ndarray, **kw: Any):
+    def fit_transform(self, U: np.ndarray, y: None = None, **kw: Any):
+        """``fit(U)``, then ``transform(U, **kw)`` (``y`` is ignored, as in scikit-learn)."""
         return self.fit(U).transform(U, **kw)
 
     # ------------------------------------------------------------------ online
@@ -583,7 +582,7 @@ class RCSFAICA:
     # ------------------------------------------------------------------ misc
     def _check_fitted(self) -> None:
         if not hasattr(self, "ica_"):
-            raise RuntimeError("RCSFAICA is not fitted yet; call fit(U) first")
+            raise NotFittedError("RCSFAICA is not fitted yet; call fit(U) first")
 
     def __repr__(self) -> str:
         p = self.params

@@ -19,13 +19,15 @@ active ICA unit.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from scipy.cluster.vq import kmeans2
 
 from hippo._checks import check_array, check_fields, check_finite, check_positive
+from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo.io import CorruptFileError, load_npz, save_npz
 
 PROTOTYPES_FORMAT = "hippo.PlacePrototypes/1"
@@ -54,17 +56,15 @@ class PrototypeParams:
             raise ValueError("max_prototypes must be >= n_prototypes")
 
 
-class PlacePrototypes:
+class PlacePrototypes(ParamsEstimator):
     """Radial-basis place cells over a population code (see the module docstring)."""
 
-    def __init__(self, params: PrototypeParams | None = None) -> None:
-        self.params = params or PrototypeParams()
-        self.centres_: np.ndarray | None = None
-        self.sigma_: float | None = None
+    def __init__(self, params: PrototypeParams | None = None, **overrides: Any) -> None:
+        self.params = replace(params or PrototypeParams(), **overrides)
 
-    def fit(self, Y: np.ndarray) -> PlacePrototypes:
+    def fit(self, Y: np.ndarray, y: None = None) -> PlacePrototypes:
         """Fit the prototypes to training outputs ``Y`` (T, d)."""
-        Y = check_finite("Y", Y)
+        Y = _real("Y", Y)
         if Y.ndim != 2:
             raise ValueError(f"Y must have shape (T, d), got {Y.shape}")
         k = int(self.params.n_prototypes)
@@ -75,9 +75,14 @@ class PlacePrototypes:
         near = np.argmin(_sqdist(Y, centres), axis=1)
         centres = centres[np.unique(near)]
         d = np.sqrt(np.min(_sqdist(Y, centres), axis=1))
+        self.n_features_in_ = Y.shape[1]
         self.centres_ = centres
         self.sigma_ = float(max(np.median(d), 1e-6))
         return self
+
+    def fit_transform(self, Y: np.ndarray, y: None = None) -> np.ndarray:
+        """``fit(Y)``, then the activities of ``Y``."""
+        return self.fit(Y).transform(Y)
 
     @property
     def n_units(self) -> int:
@@ -87,12 +92,10 @@ class PlacePrototypes:
     def transform(self, Y: np.ndarray) -> np.ndarray:
         """Activities (T, n_prototypes) of a sequence of outputs (no recruitment)."""
         self._check_fitted()
-        Y = check_finite("Y", np.atleast_2d(Y))
-        d = self.centres_.shape[1]  # type: ignore[union-attr]
-        if Y.ndim != 2 or Y.shape[1] != d:
-            raise ValueError(f"place-cell outputs must have shape ({d},) or (T, {d}) (the "
-                             f"dimension the prototypes were fitted on), got "
-                             f"{np.shape(Y) if np.ndim(Y) != 2 else Y.shape}")
+        Y = _real("Y", Y)
+        if Y.ndim != 2 or Y.shape[1] != self.centres_.shape[1]:  # type: ignore[union-attr]
+            raise ValueError(f"Y must have shape (T, {self.centres_.shape[1]}), "  # type: ignore[union-attr]
+                             f"got {Y.shape}")
         return np.exp(-_sqdist(Y, self.centres_) / (2 * self.sigma_**2))  # type: ignore[operator]
 
     def step(self, y: np.ndarray) -> np.ndarray:
@@ -101,7 +104,7 @@ class PlacePrototypes:
         d = self.centres_.shape[1]  # type: ignore[union-attr]
         if np.shape(y) != (d,):
             raise ValueError(f"place-cell output y must have shape ({d},), got {np.shape(y)}")
-        a = self.transform(y)[0]
+        a = self.transform(np.reshape(y, (1, -1)))[0]
         p = self.params
         if (p.recruit_threshold > 0 and a.max() < p.recruit_threshold
                 and len(self.centres_) < p.max_prototypes):  # type: ignore[arg-type]
@@ -149,8 +152,16 @@ class PlacePrototypes:
         return obj
 
     def _check_fitted(self) -> None:
-        if self.centres_ is None:
-            raise RuntimeError("PlacePrototypes is not fitted; call fit() first")
+        if getattr(self, "centres_", None) is None:
+            raise NotFittedError("PlacePrototypes is not fitted; call fit() first")
+
+
+def _real(name: str, Y: object) -> np.ndarray:
+    """``Y`` as a finite float array; complex values are refused, not cast."""
+    arr = np.asarray(Y)
+    if np.iscomplexobj(arr):
+        raise ValueError(f"{name} must be real numbers, got dtype {arr.dtype}")
+    return check_finite(name, arr)
 
 
 def _sqdist(Y: np.ndarray, C: np.ndarray) -> np.ndarray:
