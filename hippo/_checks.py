@@ -222,3 +222,44 @@ def check_fields(obj: Any) -> None:
 
 
 _HINTS: dict[type, dict[str, Any]] = {}
+
+
+def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarray, float]:
+    """The per-tick check of a robot's observation; returns ``(ir, t)``.
+
+    ``obs`` must carry ``ir`` (``n_sensors`` readings in [0, 1]), ``t`` (a finite time later
+    than ``last_t``: a clock running backwards or standing still is refused), ``odometry``
+    (3 finite numbers), ``floor`` (an integer colour id >= 0), ``sound`` and ``moving`` (bools).
+    Cheap: one min/max over the readings (NaN fails it too), a few scalar tests.
+    """
+    try:
+        ir, t, odo = obs.ir, obs.t, obs.odometry
+        floor, sound, moving = obs.floor, obs.sound, obs.moving
+    except AttributeError as exc:
+        raise ValueError(f"obs must be an Observation (ir, t, odometry, floor, sound, moving), "
+                         f"got {type(obs).__name__} ({exc})") from None
+    try:
+        ir = np.asarray(ir, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"obs.ir must be {n_sensors} sensor readings, got {ir!r:.80}") from None
+    if ir.shape != (n_sensors,):
+        raise ValueError(f"obs.ir must have shape ({n_sensors},), got {ir.shape} ({ir!r:.80})")
+    if not (ir.min() >= 0.0 and ir.max() <= 1.0):
+        raise ValueError(f"obs.ir readings must be finite and in [0, 1], got {ir}")
+    if isinstance(t, bool) or not isinstance(t, numbers.Real) or not math.isfinite(t):
+        raise ValueError(f"obs.t must be a finite time in s, got {t!r}")
+    if not t > last_t:
+        raise ValueError(f"obs.t = {t!r} does not advance past the previous tick's {last_t!r}: "
+                         "the clock must run forward")
+    try:
+        odo = np.asarray(odo, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"obs.odometry must be (dx, dy, dtheta), got {odo!r:.80}") from None
+    if odo.shape != (3,) or not np.isfinite(odo).all():
+        raise ValueError(f"obs.odometry must be 3 finite numbers (dx, dy, dtheta), got {odo!r:.80}")
+    if isinstance(floor, bool | np.bool_) or not isinstance(floor, numbers.Integral) or floor < 0:
+        raise ValueError(f"obs.floor must be an integer colour id >= 0, got {floor!r}")
+    for name, v in (("sound", sound), ("moving", moving)):
+        if not isinstance(v, bool | np.bool_):
+            raise ValueError(f"obs.{name} must be True or False, got {v!r}")
+    return ir, float(t)

@@ -44,7 +44,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from hippo._checks import check_finite, check_positive
+from hippo._checks import check_finite, check_observation, check_positive
 from hippo.cognitive_map import Action, DriveParams, Drives, Planner, PlannerParams, TransitionGraph
 from hippo.perception.prototypes import PlacePrototypes
 from hippo.perception.states import StateLayer, StateLayerParams
@@ -315,10 +315,8 @@ class Agent:
     def step(self, obs: Observation) -> tuple[float, float]:
         """Perceive, learn, decide and act for one tick; returns wheel speeds (cm/s)."""
         p = self.p
-        ir = check_finite("sensor readings", obs.ir)
-        if ir.shape != (self.sensors.n,):
-            raise ValueError(f"expected {self.sensors.n} sensor readings, got shape {ir.shape}")
-        self.t = float(obs.t)
+        ir, self.t = check_observation(obs, self.sensors.n, getattr(self, "_last_t", -math.inf))
+        self._last_t = self.t
         self.pi.step(obs.odometry)
         if self.avoid.boxed_in(obs) and self._clear_view is not None:
             # occluded: something is pressed against the robot (the teacher's block) and its

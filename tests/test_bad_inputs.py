@@ -144,6 +144,26 @@ def _drives() -> Drives:
     return d
 
 
+def _agent_obs(**change):
+    """A fresh agent, stepped once, and a valid next observation with ``change`` applied."""
+    from hippo.agent import Agent, GroundTruthPlaceCells
+    from hippo.sim.world import Observation
+
+    world = _world()
+    agent = Agent(GroundTruthPlaceCells(np.array([[50.0, 50.0], [150.0, 50.0]])),
+                  sensors=world.sensors, robot=world.robot, seed=0)
+    obs = world.reset(0)
+    obs = world.step(agent.step(obs))
+    fields = {k: getattr(obs, k) for k in Observation.__slots__}
+    fields.update(change)
+    return agent, Observation(**fields)
+
+
+def _agent_step(**change):
+    agent, obs = _agent_obs(**change)
+    return agent.step(obs)
+
+
 def _timing_at_event(previous_tau: float):
     t = SpectralTiming()
     cells = TransitionCells(t)
@@ -471,6 +491,26 @@ CASES: list[tuple[str, typing.Callable, type, str]] = [
     ("planner unknown state", lambda p: Planner().choose(_graph(), _drives(), 42,
                                                          np.random.default_rng(0)), K,
      r"unknown state 42"),
+    # --- the agent's observation (one cheap check per tick)
+    ("agent t nan", lambda p: _agent_step(t=math.nan), V, r"obs\.t must be a finite time"),
+    ("agent t inf", lambda p: _agent_step(t=math.inf), V, r"obs\.t"),
+    ("agent t backwards", lambda p: _agent_step(t=0.0), V, r"clock must run forward"),
+    ("agent t text", lambda p: _agent_step(t="0.4"), V, r"obs\.t"),
+    ("agent ir x50", lambda p: _agent_step(ir=np.full(8, 50.0)), V, r"in \[0, 1\]"),
+    ("agent ir None", lambda p: _agent_step(ir=None), V, r"obs\.ir must have shape \(8,\)"),
+    ("agent ir NaN", lambda p: _agent_step(ir=np.full(8, np.nan)), V, r"obs\.ir"),
+    ("agent ir 5", lambda p: _agent_step(ir=np.zeros(5)), V, r"shape \(8,\)"),
+    ("agent ir text", lambda p: _agent_step(ir="abcdefgh"), V, r"obs\.ir"),
+    ("agent odometry 2", lambda p: _agent_step(odometry=np.zeros(2)), V, r"obs\.odometry"),
+    ("agent odometry NaN", lambda p: _agent_step(odometry=np.full(3, np.nan)), V,
+     r"obs\.odometry"),
+    ("agent floor -1", lambda p: _agent_step(floor=-1), V, r"obs\.floor"),
+    ("agent floor 1.5", lambda p: _agent_step(floor=1.5), V, r"obs\.floor"),
+    ("agent sound text", lambda p: _agent_step(sound="yes"), V, r"obs\.sound"),
+    ("agent moving None", lambda p: _agent_step(moving=None), V, r"obs\.moving"),
+    ("agent obs dict", lambda p: _agent_obs()[0].step({"ir": np.zeros(8), "t": 1.0}), V,
+     r"obs must be an Observation.*dict"),
+    ("agent obs None", lambda p: _agent_obs()[0].step(None), V, r"obs must be an Observation"),
     # --- world and recordings
     ("world step 3 values", lambda p: _world().step((1.0, 2.0, 3.0)), V,
      r"pair \(left, right\).*\(1\.0, 2\.0, 3\.0\)"),
