@@ -35,7 +35,7 @@ from typing import Any
 import numpy as np
 import scipy.linalg
 
-from hippo._checks import check_finite
+from hippo._checks import check_fields, check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo._threads import parallel_map
 
@@ -66,6 +66,7 @@ class ICAParams:
     workers: int | None = None
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if self.n_components is not None and int(self.n_components) < 1:
             raise ValueError(f"n_components (n_ica) must be >= 1, got {self.n_components}")
         if self.algorithm not in ("symmetric", "deflation"):

@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 import scipy.linalg
 
-from hippo._checks import check_finite
+from hippo._checks import check_fields, check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
 
 _AUTO_CANDIDATES = tuple(10.0 ** -k for k in range(3, 13))
@@ -56,6 +56,7 @@ class SFAParams:
     expansion: str = "linear"
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if int(self.n_components) < 1:
             raise ValueError(f"n_components (n_sfa) must be >= 1, got {self.n_components}")
         if self.expansion not in ("linear", "quadratic"):
