@@ -54,13 +54,17 @@ class HelpFormatter(argparse.RawDescriptionHelpFormatter):
         return text
 
 
+def _fmt(v: float) -> str:
+    return str(int(v)) if float(v).is_integer() and abs(v) < 1e15 else f"{v:g}"
+
+
 def _bounds(lo: float | None, hi: float | None, *, lo_open: bool = False,
             hi_open: bool = False) -> str:
-    lo_s = None if lo is None else f"{'>' if lo_open else '>='} {lo:g}"
-    hi_s = None if hi is None else f"{'<' if hi_open else '<='} {hi:g}"
+    lo_s = None if lo is None else f"{'>' if lo_open else '>='} {_fmt(lo)}"
+    hi_s = None if hi is None else f"{'<' if hi_open else '<='} {_fmt(hi)}"
     if lo is not None and hi is not None:
         left, right = ("(" if lo_open else "["), (")" if hi_open else "]")
-        return f"in {left}{lo:g}, {hi:g}{right}"
+        return f"in {left}{_fmt(lo)}, {_fmt(hi)}{right}"
     return lo_s or hi_s or "any value"
 
 
