@@ -59,6 +59,14 @@ def n_workers(requested: int | None = None) -> int:
     return max(1, cores)
 
 
+def blas_budget(workers: int, *, cores: int | None = None) -> int:
+    """BLAS threads each of ``workers`` side-by-side workers may use: the one rule for threads,
+    ``workers x BLAS threads <= cores`` (at least 1; ``cores`` default: this process's)."""
+    if int(workers) < 1:
+        raise ValueError(f"workers must be >= 1, got {workers}")
+    return max(1, int(cores if cores is not None else n_workers()) // int(workers))
+
+
 def parallel_map(fn: Callable[[Any], T], items: Iterable[Any], workers: int | None = None
                  ) -> list[T]:
     """``[fn(x) for x in items]`` on up to ``workers`` threads (default: the usable cores), each

@@ -1,4 +1,5 @@
-"""The ``hippo`` command: ``hippo run SCENARIO``, ``hippo record ARENA``, ``hippo demo``.
+"""The ``hippo`` command: ``hippo run SCENARIO``, ``hippo sweep SCENARIO``, ``hippo record ARENA``,
+``hippo demo``.
 
 Each scenario is a module under :mod:`hippo.scenarios` that defines
 ``add_arguments(parser)`` and ``run(args) -> dict`` (the metrics it wrote). The scripts in
@@ -54,6 +55,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     sub.add_parser("demo", help="drive the robot in the two-rooms arena (same as run demo)",
                    add_help=False)
     sub.add_parser("record", help="record a wall-following run to .npz", add_help=False)
+    sub.add_parser("sweep", help="run a scenario over seeds x parameters on Dask distributed",
+                   add_help=False)
     sub.add_parser("list", help="list the scenarios")
     if not argv or argv[0] in ("-h", "--help"):
         top.print_help()
@@ -66,6 +69,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     if cmd == "demo":
         run_scenario("demo", rest)
         return 0
+    if cmd == "sweep":
+        from hippo.sweep import sweep_main
+
+        return sweep_main(rest)
     if cmd == "record":
         from hippo.sim.record import record_main
 
