@@ -25,8 +25,8 @@ from threadpoolctl import threadpool_limits
 
 from hippo.agent import Agent, AgentParams
 from hippo.cognitive_map import DriveParams, PlannerParams
-from hippo.scenarios.place_preference import STATES, make_places
 from hippo.sim import WallFollower, World, arenas
+from hippo.tasks import PLACE_STATES, make_places
 
 
 def setup(kind: str, seed: int = 0) -> tuple[World, Agent, object]:
@@ -39,11 +39,11 @@ def setup(kind: str, seed: int = 0) -> tuple[World, Agent, object]:
         obs = world.step(ctrl.act(obs))
         sensors.append(obs.ir)
     places = make_places(kind, arena, np.array(sensors), 24, seed, 32)
-    params = AgentParams(states=STATES, planner=PlannerParams(exploration_threshold=0.3))
+    params = AgentParams(states=PLACE_STATES, planner=PlannerParams(exploration_threshold=0.3))
     agent = Agent(places, drives={"sound": DriveParams(epsilon=0.02)}, params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)
     for _ in range(2000):  # learn a map first
-        obs = world.step(agent.step(obs))
+        obs = world.step(agent.step(obs, world.truth))
     agent.drives.set_level("sound", 0.8)
     return world, agent, obs
 
@@ -67,7 +67,7 @@ def one_round(agent_world, peer_world, ticks: int) -> dict[str, tuple[float, flo
     world, agent, obs = agent_world
     t_agent, t_world = Clock(), Clock()
     for _ in range(ticks):
-        obs = t_world(world.step, t_agent(agent.step, obs))
+        obs = t_world(world.step, t_agent(agent.step, obs, world.truth))
     agent_world[2] = obs
     pworld, ctrl, pobs = peer_world
     t_pworld, t_ctrl = Clock(), Clock()
@@ -105,7 +105,7 @@ def main() -> None:
             prof = cProfile.Profile()
             prof.enable()
             for _ in range(a.ticks):
-                obs = world.step(agent.step(obs))
+                obs = world.step(agent.step(obs, world.truth))
             prof.disable()
             pstats.Stats(prof).sort_stats("tottime").print_stats(25)
             return
