@@ -229,9 +229,10 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
     if todo:
         own_client = own_cluster = None
         if client is None:
-            from hippo._threads import n_workers
+            from hippo._threads import n_workers, usable_cores
 
-            client, own_cluster = _connect(scheduler, n_workers(workers))
+            client, own_cluster = _connect(scheduler, n_workers(workers) if workers else
+                                           usable_cores())
             own_client = client
         try:
             _execute(client, todo, out, task, int(retries), result, as_completed)
