@@ -176,16 +176,18 @@ class Brain:
     drives : drive name -> :class:`DriveParams`. The drive ``"sound"`` is satisfied by the
         reward sound; others by :meth:`reward` (e.g. the teacher's end of a checkpoint block).
     params : :class:`BrainParams`.
-    occluded : ``occluded(obs) -> bool``: something is pressed against the robot and its
-        distance sensors see only that (the teacher's block); the place cells then keep
-        hearing the last clear view. Default: never.
+    occlusion : an object whose ``boxed_in(obs) -> bool`` says that something is pressed
+        against the robot and its distance sensors see only that (the teacher's block; the
+        motor layer's :class:`~hippo.sim.controllers.ObstacleAvoidance`); the place cells then
+        keep hearing the last clear view. Default: never. (An object, not a callable, so that
+        a whole robot can be snapshotted.)
     seed : the run's seed; the brain's own random choices (planner noise, exploration of known
         moves) come from its stream ``"brain"`` (:mod:`hippo.seeds`), or from ``rng``.
     """
 
     def __init__(self, places: PlaceSource | None = None, *,
                  drives: Mapping[str, DriveParams] | None = None,
-                 params: BrainParams | None = None, occluded: Any = None,
+                 params: BrainParams | None = None, occlusion: Any = None,
                  seed: int = 0, rng: np.random.Generator | None = None) -> None:
         self.places = places
         self.p = p = params or BrainParams()
@@ -196,7 +198,7 @@ class Brain:
         self.drives = Drives(dict(drives if drives is not None else {"sound": DriveParams()}))
         self.planner = Planner(p.planner, seed=seed)
         self.pi = PathIntegrator()
-        self.occluded = occluded
+        self.occlusion = occlusion
         self.t = 0.0
         self.decide = Decider(self)
         self._moving = True
@@ -269,7 +271,8 @@ class Brain:
         ir = check_finite("sensor readings", obs.ir)
         self.t = float(obs.t)
         self.pi.step(obs.odometry)
-        if self.occluded is not None and self.occluded(obs) and self._clear_view is not None:
+        if (self.occlusion is not None and self.occlusion.boxed_in(obs)
+                and self._clear_view is not None):
             # occluded: the distance sensors see only what is pressed against the robot. They
             # say nothing about the place, and feeding them to the reservoir would corrupt its
             # memory for minutes; the place cells keep hearing the last clear view

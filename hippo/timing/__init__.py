@@ -24,11 +24,17 @@ from hippo.timing.chain import TimingChain, TimingStep
 from hippo.timing.nlms import NLMS, NLMSParams, learning_modulation, nlms_update, sliding_mean
 from hippo.timing.non_occurrence import NonOccurrence, NonOccurrenceParams
 from hippo.timing.spectral import BatteryState, SpectralParams, SpectralTiming
-from hippo.timing.transitions import TransitionCells, TransitionParams, TransitionReadout
+from hippo.timing.transitions import (
+    DelayRangeWarning,
+    TransitionCells,
+    TransitionParams,
+    TransitionReadout,
+)
 
 __all__ = [
     "NLMS",
     "BatteryState",
+    "DelayRangeWarning",
     "NLMSParams",
     "NonOccurrence",
     "NonOccurrenceParams",
