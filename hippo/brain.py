@@ -36,7 +36,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite, check_positive
+from hippo._checks import check_fields, check_finite, check_positive
 from hippo.cognitive_map import Action, DriveParams, Drives, Planner, PlannerParams, TransitionGraph
 from hippo.decision import Decider
 from hippo.perception.states import StateEvent, StateLayer, StateLayerParams
@@ -117,6 +117,7 @@ class BrainParams:
     planner: PlannerParams = field(default_factory=lambda: PlannerParams(w=0.9, noise=0.01))
 
     def __post_init__(self) -> None:
+        check_fields(self)
         check_positive("dt", self.dt)
         check_positive("still_turn", self.still_turn, allow_zero=True)
         check_positive("move_timeout", self.move_timeout)

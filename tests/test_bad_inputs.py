@@ -18,10 +18,12 @@ import warnings
 import numpy as np
 import pytest
 
+from hippo.brain import BrainParams
 from hippo.cognitive_map import DriveParams, Drives, TransitionGraph
 from hippo.cognitive_map.graph import Action
 from hippo.cognitive_map.planner import Planner, PlannerParams, propagate
 from hippo.io import CorruptFileError
+from hippo.motor import MotorParams
 from hippo.perception import RCSFAICA
 from hippo.perception.ica import FastICA, ICAParams
 from hippo.perception.place_cells import InputRangeWarning, RCSFAICAParams
@@ -39,8 +41,6 @@ from hippo.timing import (
     NLMSParams,
     NonOccurrence,
     NonOccurrenceParams,
-    Satisfaction,
-    SatisfactionParams,
     SpectralParams,
     SpectralTiming,
     TransitionCells,
@@ -50,7 +50,7 @@ from hippo.timing import (
 # ------------------------------------------------------------------ generated: wrong types
 PARAM_CLASSES = [RCSFAICAParams, ReservoirParams, SFAParams, ICAParams, PrototypeParams,
                  StateLayerParams, SpectralParams, NLMSParams, TransitionParams,
-                 NonOccurrenceParams, SatisfactionParams, DriveParams, PlannerParams,
+                 NonOccurrenceParams, DriveParams, PlannerParams, BrainParams, MotorParams,
                  RobotParams, WallFollowerParams]
 
 
@@ -153,15 +153,15 @@ def _agent_obs(**change):
     agent = Agent(GroundTruthPlaceCells(np.array([[50.0, 50.0], [150.0, 50.0]])),
                   sensors=world.sensors, robot=world.robot, seed=0)
     obs = world.reset(0)
-    obs = world.step(agent.step(obs))
+    obs = world.step(agent.step(obs, world.truth))  # ground-truth cells read World.truth
     fields = {k: getattr(obs, k) for k in Observation.__slots__}
     fields.update(change)
-    return agent, Observation(**fields)
+    return agent, Observation(**fields), world.truth
 
 
 def _agent_step(**change):
-    agent, obs = _agent_obs(**change)
-    return agent.step(obs)
+    agent, obs, truth = _agent_obs(**change)
+    return agent.step(obs, truth)
 
 
 def _timing_at_event(previous_tau: float):
@@ -393,11 +393,6 @@ CASES: list[tuple[str, typing.Callable, type, str]] = [
      r"prediction of \(0, 1\)"),
     ("nonocc dt 0", lambda p: NonOccurrence().step({}, 0.0), V, r"dt"),
     ("nonocc fall 1", lambda p: NonOccurrenceParams(fall_fraction=1.0), V, r"fall_fraction"),
-    ("satisfaction alpha 0", lambda p: SatisfactionParams(alpha=0.0), V, r"alpha"),
-    ("satisfaction shape", lambda p: Satisfaction(2).step({}, np.zeros(3), 0.2), V,
-     r"satisfaction"),
-    ("satisfaction NaN", lambda p: Satisfaction(1).step({(0, 1): math.nan}, np.zeros(1), 0.2),
-     V, r"activity of transition"),
     ("delay beyond battery", lambda p: (lambda c, b: c.step(b, 0.2))(*_timing_at_event(400.0)),
      DelayRangeWarning, r"400.*mu_max=120"),
     # --- transition graph
