@@ -1,0 +1,81 @@
+"""Session and Log: the closed loop run, logged under named phases, written to run.npz."""
+
+import math
+from enum import IntEnum
+
+import numpy as np
+import pytest
+
+from hippo.agent import Agent
+from hippo.cognitive_map import DriveParams
+from hippo.places import GroundTruthPlaceCells
+from hippo.sim import ArenaBuilder, World
+from hippo.tasks import Log, Session, enum_names, event_arrays
+from hippo.types import Mode
+
+
+class Phase(IntEnum):
+    WARMUP = 0
+    LEASH = 1
+
+
+def _session():
+    arena = ArenaBuilder("corridor", 200, 30).outer_walls().start(15, 15, 0.0).build()
+    world = World(arena, seed=0)
+    centres = np.array([[x, 15.0] for x in range(20, 200, 30)])
+    agent = Agent(GroundTruthPlaceCells(centres, sigma=8.0),
+                  drives={"check": DriveParams()}, sensors=world.sensors, robot=world.robot)
+    return world, agent, Session(world, agent, phase=Phase.WARMUP)
+
+
+def test_run_logs_every_tick_under_its_phase_and_stops_at_until(tmp_path):
+    _, _, s = _session()
+    s.run(seconds=2.0)
+    assert len(s.log) == 10 and s.t == pytest.approx(2.0)
+    s.phase, s.trial = Phase.LEASH, 3
+    obs = s.run(500, until=lambda o: s.truth.pose[0] > 40.0)
+    assert s.truth.pose[0] > 40.0 and obs is s.obs
+    phase = s.log.column("phase")
+    assert set(phase[:10]) == {0} and set(phase[10:]) == {1}
+    assert set(s.log.column("trial", 10)) == {3}
+    np.testing.assert_array_equal(s.log.column("x")[-1], s.truth.pose[0])
+    with pytest.raises(ValueError, match="either ticks or seconds"):
+        s.run(3, seconds=1.0)
+
+    arrays = s.save(tmp_path / "out", Phase)
+    with np.load(tmp_path / "out" / "run.npz") as z:
+        assert list(z["phase_names"]) == ["warmup", "leash"]
+        assert list(z["mode_names"]) == ["explore", "move", "approach", "wait"]
+        assert list(z["drive_names"]) == ["check"]
+        assert z["t"].shape == arrays["t"].shape == (len(s.log),)
+    assert (tmp_path / "out" / "map.graphml").exists()
+
+
+def test_the_teacher_block_and_the_kidnap():
+    world, agent, s = _session()
+    s.run(seconds=4.0)
+    x0 = s.truth.pose[0]
+    s.block(3.0)
+    assert abs(s.truth.pose[0] - x0) < 3.0 and not s.teacher.blocking
+    kinds = [k for _, k, _ in world.events]
+    assert kinds[-2:] == ["block_start", "block_end"]
+    s.put(150.0, 15.0, math.pi, event="kidnap")
+    assert world.events[-1][1] == "kidnap"
+    assert agent.brain.pi.heading == pytest.approx(math.pi, abs=0.3)  # turned by about pi
+    assert agent.mode == Mode.EXPLORE and agent.state is None
+
+
+def test_enum_names_and_events():
+    assert list(enum_names(Phase)) == ["warmup", "leash"]
+
+    class Gap(IntEnum):
+        A = 0
+        B = 2
+
+    with pytest.raises(ValueError, match="0..1"):
+        enum_names(Gap)
+    ev = event_arrays([(1.0, "sound", ""), (2.5, "block_start", "3.000")])
+    np.testing.assert_array_equal(ev["event_t"], [1.0, 2.5])
+    assert list(ev["event_kind"]) == ["sound", "block_start"]
+    assert event_arrays([])["event_t"].shape == (0,)
+    assert Log(n_drives=2).cols["drives"] == []
