@@ -72,7 +72,7 @@ def test_enum_names_and_events():
         A = 0
         B = 2
 
-    with pytest.raises(ValueError, match="0..1"):
+    with pytest.raises(ValueError, match=r"0\.\.1"):
         enum_names(Gap)
     ev = event_arrays([(1.0, "sound", ""), (2.5, "block_start", "3.000")])
     np.testing.assert_array_equal(ev["event_t"], [1.0, 2.5])
