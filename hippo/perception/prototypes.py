@@ -93,9 +93,12 @@ class PlacePrototypes(ParamsEstimator):
         """Activities (T, n_prototypes) of a sequence of outputs (no recruitment)."""
         self._check_fitted()
         Y = _real("Y", Y)
-        if Y.ndim != 2 or Y.shape[1] != self.centres_.shape[1]:  # type: ignore[union-attr]
-            raise ValueError(f"Y must have shape (T, {self.centres_.shape[1]}), "  # type: ignore[union-attr]
-                             f"got {Y.shape}")
+        Y = Y[None] if Y.ndim == 1 else Y
+        d = self.centres_.shape[1]  # type: ignore[union-attr]
+        if Y.ndim != 2 or Y.shape[1] != d:
+            raise ValueError(f"place-cell outputs must have shape ({d},) or (T, {d}) (the "
+                             f"dimension the prototypes were fitted on), got "
+                             f"{np.shape(Y) if np.ndim(Y) != 2 else Y.shape}")
         return np.exp(-_sqdist(Y, self.centres_) / (2 * self.sigma_**2))  # type: ignore[operator]
 
     def step(self, y: np.ndarray) -> np.ndarray:
@@ -104,7 +107,7 @@ class PlacePrototypes(ParamsEstimator):
         d = self.centres_.shape[1]  # type: ignore[union-attr]
         if np.shape(y) != (d,):
             raise ValueError(f"place-cell output y must have shape ({d},), got {np.shape(y)}")
-        a = self.transform(np.reshape(y, (1, -1)))[0]
+        a = self.transform(y)[0]
         p = self.params
         if (p.recruit_threshold > 0 and a.max() < p.recruit_threshold
                 and len(self.centres_) < p.max_prototypes):  # type: ignore[arg-type]
