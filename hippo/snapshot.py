@@ -33,6 +33,7 @@ import importlib
 import json
 import math
 import os
+import types
 from pathlib import Path
 from typing import Any
 
@@ -132,6 +133,10 @@ class _Encoder:
                                       f"{path}.nodes"),
                     "edges": self.enc([(u, v, dict(d)) for u, v, d in obj.edges(data=True)],
                                       f"{path}.edges")}
+        if isinstance(obj, types.MethodType):  # a bound method of a hippo object (a callback)
+            owner = obj.__self__
+            _check_class(type(owner), path)
+            return {"$method": obj.__func__.__name__, "self": self.enc(owner, f"{path}.self")}
         if isinstance(obj, np.dtype):
             return {"$dtype": obj.str}
         if isinstance(obj, type) and issubclass(obj, np.generic):
@@ -268,6 +273,16 @@ class _Decoder:
             for u, v, d in self.dec(e["edges"]):
                 g.add_edge(u, v, **d)
             return g
+        if tag == "$method":
+            owner = self.dec(e["self"])
+            name = _text(e["$method"])
+            cls = type(owner)
+            if not (cls.__module__ == "hippo" or cls.__module__.startswith("hippo.")):
+                raise CorruptFileError(f"a method of a non-hippo object {cls.__qualname__}")
+            func = getattr(cls, name, None)
+            if not callable(func) or name.startswith("__"):
+                raise CorruptFileError(f"{cls.__qualname__} has no method {name!r}")
+            return types.MethodType(func, owner)
         if tag in ("$dtype", "$nptype"):
             dt = np.dtype(_text(e[tag]))
             if dt.kind not in _ARRAY_DTYPES:

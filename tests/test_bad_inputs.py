@@ -147,21 +147,26 @@ def _drives() -> Drives:
 def _agent_obs(**change):
     """A fresh agent, stepped once, and a valid next observation with ``change`` applied."""
     from hippo.agent import Agent, GroundTruthPlaceCells
-    from hippo.sim.world import Observation
+    from hippo.types import Observation
 
     world = _world()
     agent = Agent(GroundTruthPlaceCells(np.array([[50.0, 50.0], [150.0, 50.0]])),
                   sensors=world.sensors, robot=world.robot, seed=0)
     obs = world.reset(0)
-    obs = world.step(agent.step(obs))
+    obs = world.step(agent.step(obs, world.truth))
     fields = {k: getattr(obs, k) for k in Observation.__slots__}
     fields.update(change)
-    return agent, Observation(**fields)
+    return agent, Observation(**fields), world.truth
 
 
 def _agent_step(**change):
-    agent, obs = _agent_obs(**change)
-    return agent.step(obs)
+    agent, obs, truth = _agent_obs(**change)
+    return agent.step(obs, truth)
+
+
+def _agent_step_raw(obs):
+    agent, _obs, truth = _agent_obs()
+    return agent.step(obs, truth)
 
 
 def _timing_at_event(previous_tau: float):
@@ -508,9 +513,9 @@ CASES: list[tuple[str, typing.Callable, type, str]] = [
     ("agent floor 1.5", lambda p: _agent_step(floor=1.5), V, r"obs\.floor"),
     ("agent sound text", lambda p: _agent_step(sound="yes"), V, r"obs\.sound"),
     ("agent moving None", lambda p: _agent_step(moving=None), V, r"obs\.moving"),
-    ("agent obs dict", lambda p: _agent_obs()[0].step({"ir": np.zeros(8), "t": 1.0}), V,
+    ("agent obs dict", lambda p: _agent_step_raw({"ir": np.zeros(8), "t": 1.0}), V,
      r"obs must be an Observation.*dict"),
-    ("agent obs None", lambda p: _agent_obs()[0].step(None), V, r"obs must be an Observation"),
+    ("agent obs None", lambda p: _agent_step_raw(None), V, r"obs must be an Observation"),
     # --- world and recordings
     ("world step 3 values", lambda p: _world().step((1.0, 2.0, 3.0)), V,
      r"pair \(left, right\).*\(1\.0, 2\.0, 3\.0\)"),
