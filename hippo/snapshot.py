@@ -146,6 +146,15 @@ class _Encoder:
             _check_class(obj, path)
             return {"$class": f"{obj.__module__}:{obj.__qualname__}"}
         _check_class(cls, path)
+        custom = getattr(cls, "__snapshot_state__", None)
+        if custom is not None:  # the class says what its state is (e.g. World: no pymunk)
+            r = self._remember(obj)
+            try:
+                st = obj.__snapshot_state__()
+            except TypeError as exc:
+                raise SnapshotError(f"{path}: {exc}") from None
+            return {"$custom": f"{cls.__module__}:{cls.__qualname__}", "id": r,
+                    "state": self.enc(st, f"{path}.state")}
         r = self._remember(obj)
         state = _attributes(obj)
         return {"$obj": f"{cls.__module__}:{cls.__qualname__}", "id": r,
@@ -290,6 +299,15 @@ class _Decoder:
             return dt if tag == "$dtype" else dt.type
         if tag == "$class":
             return _import_class(e["$class"])
+        if tag == "$custom":
+            cls = _import_class(e["$custom"])
+            restore = getattr(cls, "__snapshot_restore__", None)
+            if restore is None:
+                raise CorruptFileError(f"{cls.__qualname__} has no snapshot restore")
+            r = e.get("id")
+            obj = restore(self.dec(e["state"]))
+            e = {"id": r}
+            return self._put(e, obj)
         if tag == "$obj":
             cls = _import_class(e["$obj"])
             obj = self._put(e, cls.__new__(cls))
@@ -318,6 +336,14 @@ def _list(v: Any) -> list[Any]:
     return v
 
 
+_PLAIN_TOPS = {"builtins:dict": dict, "builtins:tuple": tuple, "builtins:list": list}
+
+
+def _top_class(spec: Any) -> type:
+    """The class a snapshot holds: a hippo class, or a dict/tuple/list of parts."""
+    return _PLAIN_TOPS.get(spec) or _import_class(spec)
+
+
 def _import_class(spec: Any) -> type:
     """A class defined in the hippo package, by ``module:QualName``; nothing else."""
     spec = _text(spec)
@@ -342,7 +368,8 @@ def _sha256(path: Path) -> str:
 
 
 def save_snapshot(obj: Any, folder: str | os.PathLike) -> Path:
-    """Write the whole state of ``obj`` (a hippo object and everything it holds) to ``folder``.
+    """Write the whole state of ``obj`` (a hippo object and everything it holds, or a dict,
+    tuple or list of such parts, e.g. ``{"agent": agent, "world": world}``) to ``folder``.
 
     Raises :class:`SnapshotError` naming the attribute that cannot be stored (e.g. an open
     simulator or a lambda). Returns the folder.
@@ -385,7 +412,7 @@ def load_snapshot(folder: str | os.PathLike, expect: type | None = None) -> Any:
         if sums.get(n) != _sha256(folder / n):
             raise CorruptFileError(f"{folder}/{n} does not match its checksum (damaged, or "
                                    "written by another save)")
-    cls = _import_class(man.get("class"))
+    cls = _top_class(man.get("class"))
     if expect is not None and not issubclass(cls, expect):
         raise CorruptFileError(f"{folder} holds a {cls.__qualname__}, not a {expect.__qualname__}")
     arrays = load_npz(folder / "arrays.npz")
