@@ -121,3 +121,51 @@ def test_nlms_params_bounds():
                      ({"leak": -0.1}, "leak")):
         with pytest.raises(ValueError, match=name):
             NLMSParams(**kw)
+
+
+def test_expected_of_a_state_without_successors_is_empty_and_names_bad_ids():
+    _timing, cells = _learned_7s()
+    assert set(cells.expected(0, [1.0, 7.0])) == {(0, 1)}
+    t2 = SpectralTiming()
+    c2 = type(cells)(t2)
+    c2.step(t2.step(0, DT), DT)
+    c2.step(t2.step(1, DT), DT)  # 0 -> 1 learned; 1 has no successor yet
+    assert c2.expected(1, [1.0]) == {}
+    with pytest.raises(ValueError, match="state must be"):
+        cells.expected(-1, [1.0])
+    with pytest.raises(ValueError, match="transition source"):
+        cells.strength((-1, 1))
+
+
+def test_non_occurrence_fires_at_the_boundaries():
+    """HIREL's rule fires once a prediction that peaked at (not only above) min_peak falls below
+    fall_fraction of its peak; the timed rule fires once the elapsed fraction reaches (not only
+    passes) 1 + tolerance."""
+    from hippo.timing import NonOccurrence, NonOccurrenceParams, TransitionReadout
+
+    p = NonOccurrenceParams(min_peak=0.25, fall_fraction=0.5)
+    no = NonOccurrence(p)
+    for x in (0.1, 0.25):  # rises exactly to min_peak
+        assert no.step({"k": x}, DT) == []
+    assert no.step({"k": 0.125}, DT) == []  # exactly half: not below
+    assert no.step({"k": 0.12}, DT) == ["k"]
+    T = 10.0
+    edge = 1.0 + max(p.rel_tolerance, p.abs_tolerance / T)
+    no = NonOccurrence(p)
+
+    def ro(frac):
+        return TransitionReadout((0, 1), 0.3, p.min_peak, T, frac, False)
+
+    assert no.step({(0, 1): ro(math.nextafter(edge, 0.0))}, DT) == []
+    assert no.step({(0, 1): ro(edge)}, DT) == [(0, 1)]
+    no = NonOccurrence(p)
+    weak = TransitionReadout((0, 1), 0.3, math.nextafter(p.min_peak, 0.0), T, 2.0, False)
+    assert no.step({(0, 1): weak}, DT) == []  # never strongly predicted: silent
+
+
+def test_run_trial_names_a_bad_delay():
+    from hippo.timing.chain import TimingChain
+    from hippo.timing.trials import run_trial
+
+    with pytest.raises(ValueError, match="delay"):
+        run_trial(TimingChain(), 0, 1, -1.0, dt=DT, jitter=0.0)
