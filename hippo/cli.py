@@ -1,5 +1,5 @@
-"""The ``hippo`` command: ``hippo run SCENARIO``, ``hippo record ARENA``, ``hippo demo``,
-``hippo list``.
+"""The ``hippo`` command: ``hippo run SCENARIO``, ``hippo sweep SCENARIO``,
+``hippo record ARENA``, ``hippo demo``, ``hippo list``.
 
 Each scenario is a module under :mod:`hippo.scenarios` that defines
 ``add_arguments(parser)`` and ``run(args) -> dict`` (the metrics it wrote), and may define
@@ -156,6 +156,8 @@ def _top_parser() -> Parser:
     sub.add_parser("demo", help="drive the robot in the two-rooms arena (same as run demo)",
                    add_help=False)
     sub.add_parser("record", help="record a wall-following run to .npz", add_help=False)
+    sub.add_parser("sweep", help="run a scenario over seeds x parameters on Dask distributed",
+                   add_help=False)
     sub.add_parser("list", help="list the scenarios with what each does")
     return top
 
@@ -176,6 +178,10 @@ def _main(argv: list[str]) -> int:
     if cmd == "demo":
         run_scenario("demo", rest)
         return 0
+    if cmd == "sweep":
+        from hippo.sweep import sweep_main
+
+        return sweep_main(rest)
     if cmd == "record":
         return record_main(rest)
     if cmd == "run":
@@ -189,7 +195,7 @@ def _main(argv: list[str]) -> int:
         name = _scenario_name(rest[0], run_parser)
         run_scenario(name, rest[1:])
         return 0
-    top.error(f"unknown command {cmd!r}; choose from: run, demo, record, list")
+    top.error(f"unknown command {cmd!r}; choose from: run, demo, record, sweep, list")
     return USAGE_ERROR  # (not reached: error exits)
 
 
