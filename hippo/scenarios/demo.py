@@ -41,5 +41,8 @@ def run(args: argparse.Namespace) -> dict:
         "locations_visited": len(np.unique(rec.label)),
         "mean_speed_cm_s": float(rec.speed.mean()),
     }
-    write_metrics(out, metrics)
+    write_metrics(out, metrics, summary=(
+        f"demo: {ticks} ticks ({metrics['simulated_s']:.0f} s simulated) in {arena.name}, "
+        f"{metrics['locations_visited']} of {len(arena.locations)} labelled locations visited, "
+        f"mean speed {metrics['mean_speed_cm_s']:.1f} cm/s, {metrics['ticks_per_s']:.0f} ticks/s"))
     return metrics

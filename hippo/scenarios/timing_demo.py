@@ -240,5 +240,11 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         arrays[f"probe{i}_tau"] = by_delay[d].tau
         arrays[f"probe{i}_prediction"] = by_delay[d].prediction
     save_npz(Path(out) / "run.npz", arrays)
-    write_metrics(out, metrics)
+    resume = metrics["extinction_resume_after_delay_s"]
+    write_metrics(out, metrics, summary=(
+        f"timing: the reward delay ({args.delay:g} s) learned as "
+        f"{metrics['reward_learned_delay_s']:.2f} s; in extinction the non-occurrence fired "
+        + ("never" if resume is None else f"{resume:.1f} s after the delay")
+        + f"; reproduced delays {', '.join(f'{d:g}' for d in delays)} s within "
+        f"{metrics['worst_mean_error_pct']:.1f} % (worst mean error)"))
     return metrics
