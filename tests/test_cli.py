@@ -88,6 +88,11 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["record", "two-rooms", "--ticks", "0"], "--ticks"),
     (["record", "two-rooms", "--out", str(ROOT)], "--out"),
     (["record", "two-rooms", "--rho", "3"], "--rho"),
+    # sweep
+    (["sweep", "bogus"], "bogus"),
+    (["sweep", "two-rooms", "--workers", "0"], "--workers"),
+    (["sweep", "two-rooms", "--param", "bogus", "1"], "bogus"),
+    (["sweep", "two-rooms", "--seeds", "x"], "--seeds"),
 ]
 
 
