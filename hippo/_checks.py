@@ -227,8 +227,9 @@ _HINTS: dict[type, dict[str, Any]] = {}
 def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarray, float]:
     """The per-tick check of a robot's observation; returns ``(ir, t)``.
 
-    ``obs`` must carry ``ir`` (``n_sensors`` readings in [0, 1]), ``t`` (a finite time later
-    than ``last_t``: a clock running backwards or standing still is refused), ``odometry``
+    ``obs`` must carry ``ir`` (``n_sensors`` readings in [0, 1]), ``t`` (a finite time no earlier
+    than ``last_t``: a clock running backwards is refused; the same observation may be fed
+    twice, as when a task hands the last observation of a recording to the loop), ``odometry``
     (3 finite numbers), ``floor`` (an integer colour id >= 0), ``sound`` and ``moving`` (bools).
     Cheap: one min/max over the readings (NaN fails it too), a few scalar tests.
     """
@@ -248,8 +249,8 @@ def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarr
         raise ValueError(f"obs.ir readings must be finite and in [0, 1], got {ir}")
     if isinstance(t, bool) or not isinstance(t, numbers.Real) or not math.isfinite(t):
         raise ValueError(f"obs.t must be a finite time in s, got {t!r}")
-    if not t > last_t:
-        raise ValueError(f"obs.t = {t!r} does not advance past the previous tick's {last_t!r}: "
+    if t < last_t:
+        raise ValueError(f"obs.t = {t!r} is earlier than the previous tick's {last_t!r}: "
                          "the clock must run forward")
     try:
         odo = np.asarray(odo, dtype=float)
