@@ -60,6 +60,7 @@ try:  # the optional extra hippo[sweep]
     from distributed.diagnostics.plugin import SchedulerPlugin
 except ImportError:  # pragma: no cover - checked by run_sweep with a clear message
     SchedulerPlugin = object  # type: ignore[assignment,misc]
+from hippo.cli_args import Parser, integer, out_dir
 from hippo.io import atomic_write_text, load_json, save_json
 from hippo.progress import Progress
 
@@ -384,7 +385,7 @@ def sweep_main(argv: Sequence[str]) -> int:
     if "--" in argv:
         i = argv.index("--")
         argv, extra = argv[:i], argv[i + 1:]
-    ap = argparse.ArgumentParser(
+    ap = Parser(
         prog="hippo sweep", description="Run a scenario over seeds x parameters on Dask "
         "distributed (a LocalCluster unless --scheduler is given); resumable.",
         epilog="Options after -- go to every cell's scenario (e.g. -- --quick).")
@@ -393,11 +394,13 @@ def sweep_main(argv: Sequence[str]) -> int:
     ap.add_argument("--param", nargs="+", action="append", default=[], metavar=("NAME", "VALUE"),
                     help="a scenario option and its values, e.g. --param leak 0.05,0.15 "
                     "0.11,0.14 (repeat for more; the grid is every combination)")
-    ap.add_argument("--out", default=None, help="output folder (default out/sweep-SCENARIO)")
-    ap.add_argument("--workers", type=int, default=None,
+    ap.add_argument("--out", type=out_dir, default=None,
+                    help="output folder (default out/sweep-SCENARIO)")
+    ap.add_argument("--workers", type=integer(1, 1024), default=None,
                     help="LocalCluster worker processes (default: the usable cores)")
     ap.add_argument("--scheduler", default=None, help="address of an existing Dask scheduler")
-    ap.add_argument("--retries", type=int, default=2, help="extra attempts of a failing cell")
+    ap.add_argument("--retries", type=integer(0, 100), default=2,
+                    help="extra attempts of a failing cell")
     ap.add_argument("--metric", default=None, help="metric of the summary figure")
     ap.add_argument("--parquet", action="store_true", help="also write results.parquet")
     a = ap.parse_args(argv)

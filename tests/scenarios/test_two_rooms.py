@@ -25,7 +25,7 @@ def test_two_rooms_quick(tmp_path):
 def test_two_rooms_leak_option_and_sweep(tmp_path):
     out = tmp_path / "two-rooms"
     m = run_scenario("two-rooms", ["--quick", "--out", str(out), "--leak", "0.08,0.15",
-                                   "--leak-sweep", "1", "--ica-restarts", "1"])
+                                   "--leak-sweep", "--ica-restarts", "1"])
     assert m["leak"] == [0.08, 0.15] and "leak_0.08_0.15" in m
     assert (out / "leak_sweep.png").exists()
     rows = m["leak_sweep"]
