@@ -40,6 +40,7 @@ Example::
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import hashlib
 import io
@@ -109,11 +110,14 @@ def grid(scenario: str, seeds: Sequence[int], params: Mapping[str, Sequence[str]
 
 
 def scenario_task(cell: Cell, out: str) -> dict[str, Any]:
-    """Run ``cell``'s scenario with its output in ``out``; returns the scenario's metrics."""
+    """Run ``cell``'s scenario with its output in ``out``; returns the scenario's metrics (what
+    it prints goes to ``out/log.txt``, not to the sweep's terminal)."""
     from hippo.cli import run_scenario
 
     os.environ.setdefault("HIPPO_QUIET", "1")
-    return run_scenario(cell.scenario, cell.argv(Path(out)))
+    Path(out).mkdir(parents=True, exist_ok=True)
+    with open(Path(out) / "log.txt", "w") as log, contextlib.redirect_stdout(log):
+        return run_scenario(cell.scenario, cell.argv(Path(out)))
 
 
 def _run_cell(task: Callable[[Cell, str], Mapping[str, Any]], cell: Cell, out: str,
