@@ -112,7 +112,7 @@ def grid(scenario: str, seeds: Sequence[int], params: Mapping[str, Sequence[str]
 def scenario_task(cell: Cell, out: str) -> dict[str, Any]:
     """Run ``cell``'s scenario with its output in ``out``; returns the scenario's metrics (what
     it prints goes to ``out/log.txt``, not to the sweep's terminal)."""
-    from hippo.cli import run_scenario
+    from hippo.runner import run_scenario
 
     os.environ.setdefault("HIPPO_QUIET", "1")
     Path(out).mkdir(parents=True, exist_ok=True)
@@ -381,7 +381,7 @@ def _seeds(text: str) -> list[int]:
 
 def sweep_main(argv: Sequence[str]) -> int:
     """``hippo sweep SCENARIO [options] [-- scenario options for every cell]``."""
-    from hippo.cli import SCENARIOS, scenario_parser
+    from hippo.runner import SCENARIOS, scenario_parser
 
     argv = list(argv)
     extra: list[str] = []

@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import warnings
 from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
@@ -72,6 +73,14 @@ from hippo.perception.sfa import SFA, SFAMoments, SFAParams, chunk_bounds
 FORMAT = "hippo.perception.RCSFAICA/1"
 
 
+_RESERVOIR_NAMES = {"n_inputs": "n_inputs", "n_neurons": "n_reservoir", "leak": "leak",
+                    "spectral_radius": "spectral_radius", "input_weight": "input_weight",
+                    "input_prob": "input_prob", "seed": "seed"}
+_SFA_NAMES = {"n_components": "n_sfa", "cutoff": "sfa_cutoff", "expansion": "sfa_expansion"}
+_ICA_NAMES = {"n_components": "n_ica", "algorithm": "ica_algorithm", "max_iter": "ica_max_iter",
+              "tol": "ica_tol", "n_restarts": "ica_restarts", "score": "ica_score"}
+#: no fitted array holds a larger magnitude; a loaded one that does is damaged
+_MAX_ABS = 1e12
 _REQUIRED = ("format", "params", "sfa_mean", "sfa_scale", "sfa_W", "sfa_slowness", "ica_mean",
              "ica_whitening", "ica_rotation", "output_std", "output_peak")
 
@@ -144,10 +153,16 @@ class RCSFAICAParams:
         check_choice("out_of_range", self.out_of_range, ("error", "warn", "clip"))
         _np_dtype(self.dtype)
         _check_device(self.device)
-        # delegate the remaining checks to the layers' own parameter classes
-        self.reservoir_params()
-        self.sfa_params()
-        self.ica_params()
+        # delegate the remaining checks to the layers' own parameter classes, naming the
+        # RCSFAICA field in the message
+        for build, names in ((self.reservoir_params, _RESERVOIR_NAMES),
+                             (self.sfa_params, _SFA_NAMES), (self.ica_params, _ICA_NAMES)):
+            try:
+                build()
+            except ValueError as exc:
+                msg = str(exc)
+                ours = [o for theirs, o in names.items() if re.search(rf"\b{theirs}\b", msg)]
+                raise ValueError(f"{' / '.join(ours) or 'RCSFAICAParams'}: {msg}") from None
 
     def reservoir_params(self) -> ReservoirParams:
         return ReservoirParams(n_inputs=self.n_inputs, n_neurons=self.n_reservoir,
@@ -553,7 +568,7 @@ class RCSFAICA(ParamsEstimator):
             if key not in a:
                 raise CorruptFileError(f"lacks required array {key!r}")
             try:
-                return check_array(key, a[key], shape=shape, dtype=dtype)
+                return check_array(key, a[key], shape=shape, dtype=dtype, max_abs=_MAX_ABS)
             except ValueError as exc:
                 raise CorruptFileError(str(exc)) from None
 
@@ -588,7 +603,10 @@ class RCSFAICA(ParamsEstimator):
             d = d_in
         sfa.n_features_in_ = d_in
         sfa.mean_ = arr("sfa_mean", (d,))
-        sfa.scale_ = positive("sfa_scale", arr("sfa_scale", (d,)))
+        sfa.scale_ = arr("sfa_scale", (d,))
+        if not (sfa.scale_ > 1e-12 * (1.0 + np.abs(sfa.mean_))).all():
+            raise CorruptFileError("sfa_scale must be > 0 everywhere (above 1e-12 of the "
+                                   "feature's mean, as fit leaves it)")
         sfa.W_ = arr("sfa_W", (d, n_sfa))
         sfa.slowness_ = arr("sfa_slowness", (n_sfa,))
         cutoff = arr("sfa_cutoff", ()) if "sfa_cutoff" in a else np.array(np.nan)
@@ -604,6 +622,8 @@ class RCSFAICA(ParamsEstimator):
         ica.mean_ = arr("ica_mean", (n_sfa,))
         ica.whitening_ = arr("ica_whitening", (n_sfa, n_ica))
         ica.rotation_ = arr("ica_rotation", (n_ica, n_ica))
+        if not np.allclose(ica.rotation_ @ ica.rotation_.T, np.eye(n_ica), atol=1e-6):
+            raise CorruptFileError("ica_rotation is not orthonormal (FastICA's unmixing is)")
         ica.components_ = ica.rotation_ @ ica.whitening_.T
         ica.n_features_in_ = n_sfa
         output_std = positive("output_std", arr("output_std", (n_ica,)))

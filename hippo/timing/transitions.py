@@ -12,6 +12,10 @@ Public API
 - :class:`TransitionReadout` — per transition and tick: ``prediction``, ``strength``,
   ``learned_delay`` (s), ``elapsed_fraction`` and the **delay-over** flag ``delay_over``.
 
+A delay longer than the battery's longest cell (``SpectralParams.mu_max``, default 120 s) cannot
+be timed: the event is still learned (its delay saturates near ``mu_max``) and a
+:class:`DelayRangeWarning` reports it.
+
 A transition is keyed by the tuple ``(a, b)`` of integer state ids everywhere (the cognitive map
 uses the same key). Transitions are recruited when first experienced; learning never stops.
 
@@ -42,6 +46,7 @@ Typical use by an agent::
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -50,9 +55,14 @@ from hippo._checks import check_fields, check_positive
 from hippo.timing.nlms import NLMSParams, learning_modulation, nlms_update
 from hippo.timing.spectral import BatteryState, SpectralTiming, check_state_id
 
-__all__ = ["TransitionCells", "TransitionParams", "TransitionReadout"]
+__all__ = ["DelayRangeWarning", "TransitionCells", "TransitionParams", "TransitionReadout"]
 
 Key = tuple[int, int]
+
+
+class DelayRangeWarning(RuntimeWarning):
+    """A transition took longer than the battery's longest time cell (``mu_max``): the delay
+    learned from it saturates near ``mu_max`` (HIREL's batteries span a finite range)."""
 
 
 @dataclass(frozen=True)
@@ -239,6 +249,12 @@ class TransitionCells:
             self._state_slot(a)
             if battery.previous_activity is None:
                 raise ValueError("battery.previous_activity is missing at an event")
+            if battery.previous_tau > self.timing.params.mu_max:
+                warnings.warn(
+                    f"transition {a}->{winner} came after {battery.previous_tau:.4g} s, beyond "
+                    f"the battery's longest cell (mu_max={self.timing.params.mu_max:g} s): its "
+                    "delay is learned as saturated near mu_max; raise SpectralParams.mu_max "
+                    "to time it", DelayRangeWarning, stacklevel=2)
             if winner != a and (a, winner) not in self._index:
                 self._recruit((a, winner))
             rows = self._out.get(a)
