@@ -344,7 +344,11 @@ def _write_table(result: SweepResult, parquet: bool) -> None:
         writer.writerow({k: _cell_text(r.get(k)) for k in cols})
     atomic_write_text(result.out / "results.csv", buf.getvalue())
     if parquet:
-        import pandas as pd
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("--parquet needs pandas and pyarrow: pip install pandas pyarrow "
+                              "(results.csv is written)") from None
 
         tmp = result.out / ".results.parquet.tmp"
         pd.DataFrame(result.rows, columns=cols).to_parquet(tmp)
