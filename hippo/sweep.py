@@ -235,8 +235,8 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
         if client is None:
             from hippo._threads import n_workers, usable_cores
 
-            client, own_cluster = _connect(scheduler, n_workers(workers) if workers else
-                                           usable_cores())
+            client, own_cluster = _connect(scheduler, usable_cores() if workers is None
+                                           else n_workers(workers))
             own_client = client
         try:
             _execute(client, todo, out, task, int(retries), result, as_completed)
@@ -409,6 +409,10 @@ def sweep_main(argv: Sequence[str]) -> int:
     ap.add_argument("--metric", default=None, help="metric of the summary figure")
     ap.add_argument("--parquet", action="store_true", help="also write results.parquet")
     a = ap.parse_args(argv)
+    if a.workers is not None and a.workers < 1:
+        ap.error(f"--workers must be >= 1, got {a.workers}")
+    if a.retries < 0:
+        ap.error(f"--retries must be >= 0, got {a.retries}")
     params: dict[str, list[str]] = {}
     parser, _ = scenario_parser(a.scenario)
     known = {s.lstrip("-") for act in parser._actions for s in act.option_strings}

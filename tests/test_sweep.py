@@ -119,6 +119,10 @@ def test_cli_names_a_bad_parameter(capsys):
     with pytest.raises(SystemExit):
         sweep_main(["timing-demo", "--param", "no-such-option", "1"])
     assert "no-such-option" in capsys.readouterr().err
+    for bad in (["--workers", "0"], ["--retries", "-1"]):
+        with pytest.raises(SystemExit):
+            sweep_main(["timing-demo", *bad])
+        assert bad[0] in capsys.readouterr().err
 
 
 @pytest.mark.slow
