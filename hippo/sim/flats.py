@@ -25,6 +25,7 @@ scans (a necessary condition for place cells to tell them apart).
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from itertools import pairwise
 
 import numpy as np
 from scipy import ndimage
@@ -115,7 +116,7 @@ def _room_walls(b: ArenaBuilder, spec: RoomSpec, doors: list[tuple[str, float, f
     for lo, hi in reversed(left):                 # left edge, downwards
         seq += [(x0, hi), None, (x0, lo)]
     seq.append(seq[0])
-    for p, q in zip(seq[:-1], seq[1:]):
+    for p, q in pairwise(seq):
         if p is not None and q is not None and p != q:
             b.wall(p, q)
 
