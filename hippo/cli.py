@@ -20,6 +20,7 @@ SCENARIOS: dict[str, str] = {
     "timing-demo": "hippo.scenarios.timing_demo",
     "place-preference": "hippo.scenarios.place_preference",
     "patrol": "hippo.scenarios.patrol",
+    "rooms": "hippo.scenarios.rooms",
 }
 
 
