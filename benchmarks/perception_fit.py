@@ -3,7 +3,7 @@
 SMC09 size: 18,120 ticks × 8 IR inputs (a real two-rooms recording from ``hippo.sim``), 600
 neurons, 4 SFA / 4 ICA units, trained on 7/8. Timed in one process, one after the other:
 
-* reservoir harvest — ``hippo.perception.Reservoir.run`` (torch float32) vs ReservoirPy's
+* reservoir harvest — ``hippo.perception.Reservoir.run`` (numpy float32) vs ReservoirPy's
   ``Reservoir`` (numpy float64; same W_in/W_res);
 * SFA fit — ``hippo.perception.SFA`` (whitening cutoff + symmetric eigenproblem) vs
   ``sksfa.SFA`` (sklearn-sfa) and a straightforward ``scipy.linalg.eigh(A, B)`` SFA;
@@ -23,7 +23,7 @@ Peers live in their own environment, never as project dependencies::
     . .venv/bin/activate && python benchmarks/perception_fit.py [--repeats 3]
 
 The script runs in the project's environment and appends ``benchmarks/.venv-peers``'s
-site-packages to ``sys.path`` (after the project's, so numpy/torch stay the project's). MDP's
+site-packages to ``sys.path`` (after the project's, so numpy stays the project's). MDP's
 ``SFANode`` is not used: MDP 3.6 does not import with numpy 2. Missing peers are skipped.
 Times are the best of ``--repeats`` runs (wall clock, seconds). On a machine shared with other
 work, run it with ``OPENBLAS_NUM_THREADS=1`` (multi-threaded BLAS stalls on busy cores; the
@@ -105,7 +105,7 @@ def main(argv: list[str] | None = None) -> int:
     res = Reservoir(model.params.reservoir_params())
     # ---- hippo
     t_h, X_t = best_of(lambda: res.run(Utr), a.repeats)
-    X = np.concatenate([Utr.astype(np.float32), X_t.numpy()], axis=1)
+    X = np.concatenate([Utr.astype(np.float32), X_t], axis=1)
     t_sfa, sfa = best_of(lambda: SFA(n_components=4).fit(X), a.repeats)
     Y = sfa.transform(X)
     t_ica, _ = best_of(lambda: FastICA(n_components=4, seed=0).fit(Y), a.repeats)

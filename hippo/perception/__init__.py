@@ -1,6 +1,7 @@
 """hippo.perception: place cells that learn themselves (RC-SFA-ICA, SMC09 / ICANN09).
 
-* :class:`Reservoir` — leaky ESN with per-neuron leak rates (SMC09 eq. 1), torch, batched.
+* :class:`Reservoir` — leaky ESN with per-neuron leak rates (SMC09 eq. 1), batched;
+  numpy on the CPU, torch on CUDA.
 * :class:`SFA` — linear (or quadratic) slow feature analysis with a whitening cutoff;
   :class:`SFAMoments` — the running sums it learns from, fed chunk by chunk.
 * :class:`FastICA` — cube-nonlinearity FastICA with restarts scored without labels.

@@ -21,12 +21,15 @@ unchanged.
 
 Two ways to drive it, with identical results (to float rounding):
 
-* :meth:`Reservoir.run` harvests a whole sequence in torch (cpu or cuda). It is batched: B input
-  streams and/or B leak-rate vectors over the one shared ``W_res``, one matrix-matrix product per
-  tick, so a leak-rate sweep costs about one run.
-* :meth:`Reservoir.step` advances one tick for the closed loop. It uses a numpy mirror of the
-  weights folded into a single matrix, ``x ← tanh([u; x] · M)``, which costs one matrix-vector
-  product per tick (~10-20 µs for 600 neurons) instead of several torch calls.
+* :meth:`Reservoir.run` harvests a whole sequence. It is batched: B input streams and/or B
+  leak-rate vectors over the one shared ``W_res``, one matrix-matrix product per tick, so a
+  leak-rate sweep costs about one run. On the CPU the tick loop is numpy (the default, and the
+  fastest there: per-tick torch calls cost more than the product itself at this size); with
+  ``device="cuda"`` it runs in torch on the GPU. torch is an optional dependency
+  (``pip install "hippo[torch]"``), imported only for that backend.
+* :meth:`Reservoir.step` advances one tick for the closed loop. It uses the weights folded into
+  a single matrix, ``x ← tanh([u; x] · M)``, which costs one matrix-vector product per tick
+  (~10-20 µs for 600 neurons).
 
 Conventions: ``run(U)[t]`` is the state *after* feeding ``U[t]`` (``x(t+1)`` in eq. 1); it is
 paired with ``U[t]`` to form the SFA input ``[u(t); x(t+1)]``.
@@ -34,15 +37,16 @@ paired with ``U[t]`` to form the SFA input ``[u(t); x(t+1)]``.
 
 from __future__ import annotations
 
+import numbers
+import sys
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import torch
 
-from hippo._checks import check_finite, check_positive, check_range
+from hippo._checks import check_fields, check_finite, check_int, check_positive, check_range
 from hippo._threads import blas_threads
 
 LeakSpec = float | Sequence[float] | np.ndarray
@@ -64,10 +68,10 @@ class ReservoirParams:
     seed: int = 0
 
     def __post_init__(self) -> None:
-        if int(self.n_inputs) < 1:
-            raise ValueError(f"n_inputs must be >= 1, got {self.n_inputs}")
-        if int(self.n_neurons) < 1:
-            raise ValueError(f"n_neurons must be >= 1, got {self.n_neurons}")
+        object.__setattr__(self, "leak", _leak_param(self.leak))
+        check_fields(self)
+        check_int("ReservoirParams.n_inputs", self.n_inputs, lo=1)
+        check_int("ReservoirParams.n_neurons", self.n_neurons, lo=1)
         check_positive("spectral_radius", self.spectral_radius)
         check_positive("input_weight", self.input_weight, allow_zero=True)
         check_range("input_prob", self.input_prob, 0.0, 0.5)
@@ -84,6 +88,14 @@ class ReservoirParams:
         """ICANN09: 17 inputs, 400 neurons, leak 0.6, ρ(W)=0.9, W_in ±0.2 with p=0.15."""
         return cls(**{**dict(n_inputs=17, n_neurons=400, spectral_radius=0.9, leak=0.6,
                              input_weight=0.2, input_prob=0.15), **overrides})
+
+
+def _leak_param(leak: Any) -> Any:
+    """A leak given as a list or a 1-D array becomes a tuple of floats (hashable, frozen)."""
+    if isinstance(leak, list | np.ndarray) and np.ndim(leak) == 1:
+        return tuple(float(v) if isinstance(v, numbers.Real) and not isinstance(v, bool)
+                     else v for v in leak)
+    return leak
 
 
 def expand_leak(leak: LeakSpec, n_neurons: int) -> np.ndarray:
@@ -144,10 +156,22 @@ def _loop_batched_np(drive: np.ndarray, W: np.ndarray, A: np.ndarray, x: np.ndar
         states[:, t] = xT.T
 
 
+def _import_torch() -> Any:
+    """torch, or a clear error saying how to install it (it is an optional dependency)."""
+    try:
+        import torch
+    except ImportError as exc:  # pragma: no cover - depends on the installation
+        raise ImportError("the torch backend of Reservoir needs PyTorch, an optional dependency: "
+                          "pip install 'hippo[torch]' (see the README for the build that "
+                          "matches your GPU)") from exc
+    return torch
+
+
 @contextmanager
 def _num_threads(n: int | None) -> Iterator[None]:
-    """Temporarily set torch's intra-op thread count (no-op for ``None``)."""
-    if n is None or n == torch.get_num_threads():
+    """Temporarily set torch's intra-op thread count (no-op for ``None`` or without torch)."""
+    torch = sys.modules.get("torch")
+    if n is None or torch is None or n == torch.get_num_threads():
         yield
         return
     old = torch.get_num_threads()
@@ -158,13 +182,26 @@ def _num_threads(n: int | None) -> Iterator[None]:
         torch.set_num_threads(old)
 
 
-def _torch_dtype(dtype: str | torch.dtype) -> torch.dtype:
-    if isinstance(dtype, torch.dtype):
-        return dtype
-    table = {"float32": torch.float32, "float64": torch.float64}
-    if dtype not in table:
+def _np_dtype(dtype: Any) -> type[np.floating]:
+    """numpy float type from ``"float32"``/``"float64"`` (a numpy or torch dtype is accepted)."""
+    name = str(dtype).removeprefix("torch.")
+    if name not in ("float32", "float64"):
         raise ValueError(f"dtype must be 'float32' or 'float64', got {dtype!r}")
-    return table[dtype]
+    return np.float32 if name == "float32" else np.float64
+
+
+def _check_device(device: Any) -> str:
+    """``"cpu"``, or a CUDA device that exists (which needs torch built with CUDA)."""
+    name = str(device)
+    if name == "cpu":
+        return name
+    if not (name == "cuda" or name.startswith("cuda:")):
+        raise ValueError(f"device must be 'cpu' or 'cuda[:N]', got {device!r}")
+    torch = _import_torch()
+    if not torch.cuda.is_available():
+        raise ValueError(f"device={name!r} but this torch build ({torch.__version__}) sees no "
+                         "CUDA GPU; use device='cpu' (the numpy loop)")
+    return name
 
 
 @dataclass
@@ -186,7 +223,8 @@ class Reservoir:
     dtype:
         ``"float32"`` (default) or ``"float64"``, for both :meth:`run` and :meth:`step`.
     device:
-        torch device for :meth:`run` (``"cpu"`` or ``"cuda"``); :meth:`step` always runs on the CPU.
+        ``"cpu"`` (default: numpy) or ``"cuda[:N]"`` (torch on that GPU; needs the ``torch``
+        extra) for :meth:`run`; :meth:`step` always runs on the CPU.
 
     Attributes
     ----------
@@ -197,7 +235,7 @@ class Reservoir:
     """
 
     def __init__(self, params: ReservoirParams | None = None, *, dtype: str = "float32",
-                 device: str | torch.device = "cpu") -> None:
+                 device: str = "cpu") -> None:
         self.params = params or ReservoirParams()
         p = self.params
         ss_res, ss_in = np.random.SeedSequence(int(p.seed)).spawn(2)
@@ -214,7 +252,7 @@ class Reservoir:
     @classmethod
     def from_weights(cls, W_in: np.ndarray, W_res: np.ndarray, leak: LeakSpec, *,
                      spectral_radius: float | None = None, dtype: str = "float32",
-                     device: str | torch.device = "cpu") -> Reservoir:
+                     device: str = "cpu") -> Reservoir:
         """A reservoir with the given weights (used by ``load``); nothing is rescaled.
 
         ``spectral_radius`` is only recorded in :attr:`params` (computed when not given).
@@ -237,15 +275,15 @@ class Reservoir:
         return self
 
     def _setup(self, W_in: np.ndarray, W_res: np.ndarray, leak: np.ndarray, dtype: str,
-               device: str | torch.device) -> None:
-        self.dtype = _torch_dtype(dtype)
-        self.np_dtype = np.float32 if self.dtype == torch.float32 else np.float64
-        self.device = torch.device(device)
+               device: str) -> None:
+        self.np_dtype = _np_dtype(dtype)
+        self.dtype = self.np_dtype.__name__
+        self.device = _check_device(device)
         self.W_in = np.asarray(W_in, dtype=float)
         self.W_res = np.asarray(W_res, dtype=float)
         self.leak = np.asarray(leak, dtype=float)
-        self._W_in_t = torch.as_tensor(self.W_in, dtype=self.dtype, device=self.device)
-        self._W_res_t = torch.as_tensor(self.W_res, dtype=self.dtype, device=self.device)
+        self._W_in_run = np.ascontiguousarray(self.W_in, dtype=self.np_dtype)
+        self._W_res_run = np.ascontiguousarray(self.W_res, dtype=self.np_dtype)
         a = self.leak
         M = np.vstack([self.W_in.T * a, self.W_res.T * a + np.diag(1.0 - a)])
         self._mirror = _StepMirror(M=np.ascontiguousarray(M, dtype=self.np_dtype),
@@ -266,101 +304,125 @@ class Reservoir:
         return float(np.max(np.abs(np.linalg.eigvals(self.W_res))))
 
     # ------------------------------------------------------------------ offline harvest
-    def run(self, U: np.ndarray | torch.Tensor, *, leak: LeakSpec | np.ndarray | None = None,
-            x0: np.ndarray | torch.Tensor | None = None, threads: int | None = 1,
-            backend: str = "auto") -> torch.Tensor:
-        """States for a whole input sequence (torch tensor on :attr:`device`).
+    def run(self, U: Any, *, leak: LeakSpec | np.ndarray | None = None,
+            x0: np.ndarray | None = None, threads: int | None = 1,
+            backend: str = "auto") -> np.ndarray:
+        """States for a whole input sequence (a numpy array of :attr:`np_dtype`).
 
-        ``U`` is ``(T, n_u)`` (one stream) or ``(B, T, n_u)`` (B streams). ``leak`` overrides the
-        reservoir's own rates: a leak spec for all streams, or a ``(B, k)``/``(B, N)`` array of
-        B leak configurations (a 2-D ``leak`` with a 2-D ``U`` feeds the one stream to all B
-        configurations: a leak sweep). ``x0`` is the initial state (default 0), ``(N,)`` or
-        ``(B, N)``. ``threads`` is the CPU thread count of torch and of numpy's BLAS for the tick
-        loop (default 1: the per-tick products are small, and extra threads only pay off for a
-        batch of leak configurations on idle cores; ``None`` leaves both as they are).
-        ``backend``: ``"auto"`` runs the tick loop with numpy on views of the torch
-        tensors when on the CPU (about 1.5x faster than per-tick torch calls, whose overhead
-        dominates at this size) and with torch on cuda; ``"torch"`` forces torch. Returns
-        ``(T, N)`` for one stream and one leak, else ``(B, T, N)``; row ``t`` is the state after
-        feeding ``U[t]``.
+        ``U`` is ``(T, n_u)`` (one stream) or ``(B, T, n_u)`` (B streams); an array-like (a torch
+        tensor too). ``leak`` overrides the reservoir's own rates: a leak spec for all streams, or
+        a ``(B, k)``/``(B, N)`` array of B leak configurations (a 2-D ``leak`` with a 2-D ``U``
+        feeds the one stream to all B configurations: a leak sweep). ``x0`` is the initial state
+        (default 0), ``(N,)`` or ``(B, N)``. ``threads`` is the BLAS (and torch) thread count for
+        the tick loop (default 1: the per-tick products are small, and extra threads only pay off
+        for a batch of leak configurations on idle cores; ``None`` leaves it as it is).
+        ``backend``: ``"auto"`` runs the tick loop with numpy on the CPU and with torch on a CUDA
+        :attr:`device`; ``"numpy"`` and ``"torch"`` force one. Returns ``(T, N)`` for one stream
+        and one leak, else ``(B, T, N)``; row ``t`` is the state after feeding ``U[t]``.
         """
-        Ut = torch.as_tensor(U, dtype=self.dtype, device=self.device)
-        if Ut.ndim not in (2, 3) or Ut.shape[-1] != self.n_inputs:
+        if backend not in ("auto", "numpy", "torch"):
+            raise ValueError(f"backend must be 'auto', 'numpy' or 'torch', got {backend!r}")
+        if backend == "numpy" and self.device != "cpu":
+            raise ValueError(f"backend='numpy' runs on the CPU, but device={self.device!r}")
+        if hasattr(U, "detach"):  # a torch tensor
+            U = U.detach().cpu().numpy()
+        U = np.asarray(U, dtype=self.np_dtype)
+        if U.ndim not in (2, 3) or U.shape[-1] != self.n_inputs:
             raise ValueError(f"U must have shape (T, {self.n_inputs}) or (B, T, {self.n_inputs}),"
-                             f" got {tuple(Ut.shape)}")
-        if not bool(torch.isfinite(Ut).all()):
+                             f" got {U.shape}")
+        if not np.isfinite(U).all():
             raise ValueError("U (the input sequence) contains NaN or inf")
-        batched_input = Ut.ndim == 3
-        if not batched_input:
-            Ut = Ut.unsqueeze(0)
-        B_in, T, _ = Ut.shape
+        batched = U.ndim == 3 or (leak is not None and np.ndim(leak) == 2)
+        if U.ndim == 2:
+            U = U[None]
+        B_in = U.shape[0]
         N = self.n_neurons
         # ---- leak: (B_leak, N)
         if leak is None:
             A = self.leak[None, :]
+        elif np.ndim(leak) == 2:
+            A = np.stack([expand_leak(row, N) for row in np.asarray(leak, dtype=float)])
         else:
-            la = np.asarray(leak, dtype=float)
-            if la.ndim == 2:
-                A = np.stack([expand_leak(row, N) for row in la])
-            else:
-                A = expand_leak(la, N)[None, :]
-        batched_leak = leak is not None and np.asarray(leak).ndim == 2
+            A = expand_leak(leak, N)[None, :]
         B = max(B_in, A.shape[0])
         if B_in not in (1, B) or A.shape[0] not in (1, B):
             raise ValueError(f"{B_in} input streams and {A.shape[0]} leak configurations "
                              "do not broadcast")
-        At = torch.as_tensor(A, dtype=self.dtype, device=self.device)
+        A = A.astype(self.np_dtype)
         # ---- initial state
-        x = torch.zeros(B, N, dtype=self.dtype, device=self.device)
+        x = np.zeros((B, N), dtype=self.np_dtype)
         if x0 is not None:
-            x0t = torch.as_tensor(x0, dtype=self.dtype, device=self.device)
-            if x0t.shape[-1] != N or x0t.ndim > 2:
-                raise ValueError(f"x0 must have shape ({N},) or (B, {N}), got {tuple(x0t.shape)}")
-            x = x + x0t
-        states = torch.empty(T, B, N, dtype=self.dtype, device=self.device)
-        if T == 0:
-            return self._shape_out(states, batched_input or batched_leak)
-        # Per-tick work is small: by default one thread, since OpenMP barriers stall for
-        # milliseconds whenever the cores are shared with other work.
-        cpu_threads = threads if self.device.type == "cpu" else None
-        with torch.inference_mode(), _num_threads(cpu_threads), blas_threads(cpu_threads):
-            # input drive W_in u(t) for all t at once: (T, B_in, N)
-            drive = torch.matmul(Ut, self._W_in_t.T).transpose(0, 1).contiguous()
-            use_numpy = self.device.type == "cpu" and backend != "torch"
-            if At.shape[0] == 1:
+            x0 = np.asarray(x0.detach().cpu() if hasattr(x0, "detach") else x0,
+                            dtype=self.np_dtype)
+            if x0.shape[-1] != N or x0.ndim > 2:
+                raise ValueError(f"x0 must have shape ({N},) or (B, {N}), got {x0.shape}")
+            x = x + x0
+        if backend == "torch" or (backend == "auto" and self.device != "cpu"):
+            states = self._run_torch(U, A, x, threads)
+        else:
+            states = self._run_numpy(U, A, x, threads)
+        return states if batched else states[0]
+
+    def _run_numpy(self, U: np.ndarray, A: np.ndarray, x: np.ndarray,
+                   threads: int | None) -> np.ndarray:
+        """The tick loop in numpy; returns (B, T, N)."""
+        B, N = x.shape
+        T = U.shape[1]
+        # input drive W_in u(t) for all t at once: (T, B_in, N), on one thread so that the
+        # states do not depend on the thread count (a small product: n_u = 8 columns)
+        with blas_threads(1):
+            drive = np.ascontiguousarray(np.matmul(U, self._W_in_run.T).transpose(1, 0, 2))
+        with blas_threads(threads):
+            if A.shape[0] == 1:
                 # shared leak: fold (1-a) and a into one matrix -> one product per tick
+                a = A[0]
+                drive *= a
+                M = self._W_res_run.T * a + np.diag(1 - a)
+                states = np.empty((T, B, N), dtype=self.np_dtype)
+                if T:
+                    _loop_shared_np(drive, M, x, states)
+                return (np.ascontiguousarray(states.transpose(1, 0, 2)) if B > 1
+                        else states.reshape(1, T, N))
+            # written straight in the (B, T, N) layout that is returned
+            out = np.empty((B, T, N), dtype=self.np_dtype)
+            if T:
+                _loop_batched_np(drive, self._W_res_run, A, x, out)
+            return out
+
+    def _run_torch(self, U: np.ndarray, A: np.ndarray, x: np.ndarray,
+                   threads: int | None) -> np.ndarray:
+        """The same loop in torch on :attr:`device` (the CUDA backend); returns (B, T, N)."""
+        torch = _import_torch()
+        dev = torch.device(self.device)
+        B, N = x.shape
+        T = U.shape[1]
+        cpu_threads = threads if dev.type == "cpu" else None
+        with torch.inference_mode(), _num_threads(cpu_threads):
+            Ut = torch.as_tensor(U, device=dev)
+            At = torch.as_tensor(A, device=dev)
+            xt = torch.as_tensor(x, device=dev)
+            W_in = torch.as_tensor(self._W_in_run, device=dev)
+            W_res = torch.as_tensor(self._W_res_run, device=dev)
+            drive = torch.matmul(Ut, W_in.T).transpose(0, 1).contiguous()  # (T, B_in, N)
+            states = torch.empty(T, B, N, dtype=Ut.dtype, device=dev)
+            if At.shape[0] == 1:
                 drive *= At
                 a = At[0]
-                M = self._W_res_t.T * a + torch.diag(1.0 - a)
-                if use_numpy:
-                    _loop_shared_np(drive.numpy(), M.numpy(), x.numpy(), states.numpy())
-                else:
-                    for t in range(T):
-                        torch.tanh(torch.addmm(drive[t], x, M), out=states[t])
-                        x = states[t]
-            elif use_numpy:
-                # written straight in the (B, T, N) layout that is returned
-                out = torch.empty(B, T, N, dtype=self.dtype)
-                _loop_batched_np(drive.numpy(), self._W_res_t.numpy(), At.numpy(), x.numpy(),
-                                 out.numpy())
-                return out
+                M = W_res.T * a + torch.diag(1.0 - a)
+                for t in range(T):
+                    torch.tanh(torch.addmm(drive[t], xt, M), out=states[t])
+                    xt = states[t]
             else:
-                WT = self._W_res_t.T.contiguous()
+                WT = W_res.T.contiguous()
                 oma = 1.0 - At
                 for t in range(T):
-                    pre = torch.mm(x, WT)
+                    pre = torch.mm(xt, WT)
                     pre += drive[t]
                     pre *= At
-                    pre.addcmul_(oma, x)
+                    pre.addcmul_(oma, xt)
                     torch.tanh(pre, out=states[t])
-                    x = states[t]
-        return self._shape_out(states, batched_input or batched_leak)
-
-    @staticmethod
-    def _shape_out(states: torch.Tensor, batched: bool) -> torch.Tensor:
-        if batched:
-            return states.permute(1, 0, 2).contiguous()
-        return states[:, 0, :]
+                    xt = states[t]
+            return states.permute(1, 0, 2).cpu().numpy()
 
     # ------------------------------------------------------------------ online loop
     @property

@@ -39,7 +39,8 @@ from typing import Any
 import numpy as np
 import scipy.linalg
 
-from hippo._checks import check_finite
+from hippo._checks import check_fields, check_finite
+from hippo._estimator import NotFittedError, ParamsEstimator
 
 _AUTO_CANDIDATES = tuple(10.0 ** -k for k in range(3, 13))
 
@@ -55,6 +56,7 @@ class SFAParams:
     expansion: str = "linear"
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if int(self.n_components) < 1:
             raise ValueError(f"n_components (n_sfa) must be >= 1, got {self.n_components}")
         if self.expansion not in ("linear", "quadratic"):
@@ -185,7 +187,7 @@ def _slow(S: np.ndarray, A: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]
     return lam, S @ V
 
 
-class SFA:
+class SFA(ParamsEstimator):
     """Linear (or quadratic) SFA: ``y = Wᵀ (x - μ)/σ`` with ``A W = B W Λ`` (SMC09 eq. 6-7).
 
     Fitted attributes: ``mean_``, ``scale_`` (z-scoring of the expanded input), ``W_``
@@ -213,7 +215,7 @@ class SFA:
         return check_finite(name, X, keep_float32=True)
 
     # ------------------------------------------------------------------ fit / transform
-    def fit(self, X: np.ndarray) -> SFA:
+    def fit(self, X: np.ndarray, y: None = None) -> SFA:
         """Learn the slow features of ``X`` (T, d), rows in time order."""
         X = self._check_X(X)
         self._fit_moments(self.accumulate(X), X)
@@ -238,8 +240,14 @@ class SFA:
 
     def _prepare(self, X: np.ndarray) -> None:
         """Shape checks and the input scaling of the quadratic expansion."""
+        self._prepare_shape(*X.shape, X=X)
+
+    def _prepare_shape(self, T: int, d_in: int, X: np.ndarray | None = None) -> None:
+        """:meth:`_prepare` from the shape alone (the linear expansion needs no data: a
+        streamed fit never holds ``X``)."""
         n = int(self.params.n_components)
-        T, d_in = X.shape
+        if self.params.expansion == "quadratic" and X is None:
+            raise ValueError("the quadratic expansion needs the data to scale its input")
         if T < 3:
             raise ValueError(f"SFA needs at least 3 samples, got {T}")
         self.n_features_in_ = d_in
@@ -256,10 +264,22 @@ class SFA:
     def _fit_moments(self, parts: list[SFAMoments], X: np.ndarray) -> np.ndarray:
         """Solve SFA from the moments of ``X`` (from :meth:`accumulate`); returns the training
         outputs."""
+        self._solve(parts, X.shape[0])
+        return self._sign(self._project(X))
+
+    def _sign(self, y: np.ndarray) -> np.ndarray:
+        """Sign-normalise the units on their training outputs ``y`` (positive skew); returns
+        the signed outputs."""
+        sign = np.where(np.mean(y ** 3, axis=0) < 0, -1.0, 1.0)
+        self.W_ = self.W_ * sign
+        return y * sign
+
+    def _solve(self, parts: list[SFAMoments], T: int) -> None:
+        """The slow directions ``W_`` (before :meth:`_sign`) from the moments of ``T`` samples."""
         n = int(self.params.n_components)
         total = parts[0] if len(parts) == 1 else parts[0].merged(parts[1])
-        if total.n != X.shape[0]:
-            raise ValueError(f"moments of {total.n} samples do not describe X ({X.shape[0]} rows)")
+        if total.n != T:
+            raise ValueError(f"moments of {total.n} samples do not describe X ({T} rows)")
         self.mean_ = total.mean
         sd = np.sqrt(np.maximum(np.diag(total.scatter) / total.n, 0.0))
         # constant columns: scale 1 (they become 0 and the cutoff drops them)
@@ -280,11 +300,7 @@ class SFA:
                 f"{self.cutoff_:g} but n_sfa={n}; lower the cutoff or n_sfa")
         lam, W = _slow(S, A, n)
         self.W_ = W
-        y = self._project(X)
-        sign = np.where(np.mean(y ** 3, axis=0) < 0, -1.0, 1.0)
-        self.W_ = W * sign
         self.slowness_ = lam
-        return y * sign
 
     def _select_cutoff(self, parts: list[SFAMoments], inv: np.ndarray, n: int) -> float:
         first, rest = parts
@@ -332,7 +348,7 @@ class SFA:
                              f"{self.n_features_in_}")
         return self._project(X)
 
-    def fit_transform(self, X: np.ndarray) -> np.ndarray:
+    def fit_transform(self, X: np.ndarray, y: None = None) -> np.ndarray:
         """``fit(X)``, then the slow features of ``X`` (computed once)."""
         X = self._check_X(X)
         return self._fit_moments(self.accumulate(X), X)
@@ -347,7 +363,7 @@ class SFA:
 
     def _check_fitted(self) -> None:
         if not hasattr(self, "W_"):
-            raise RuntimeError("SFA is not fitted yet; call fit(X) first")
+            raise NotFittedError("SFA is not fitted yet; call fit(X) first")
 
     def __repr__(self) -> str:
         p = self.params

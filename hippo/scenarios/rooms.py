@@ -32,6 +32,7 @@ from typing import Any
 
 import numpy as np
 
+from hippo.io import save_figure
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
 from hippo.progress import Progress
@@ -181,8 +182,8 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
     test_len = ticks - n_train
     run, events = _kidnapped_run(arena, rec, n_train, test_len, seed, args.rho, rooms,
                                  args.cache)
-    x_end = model.reservoir_.run(rec.sensors[:n_train]).cpu().numpy()[-1]
-    X = model.reservoir_.run(run.sensors, x0=x_end).cpu().numpy()
+    x_end = np.asarray(model.reservoir_.run(rec.sensors[:n_train]))[-1]
+    X = np.asarray(model.reservoir_.run(run.sensors, x0=x_end))
     Yk = model.ica_.transform(model.sfa_.transform(
         np.concatenate([run.sensors.astype(X.dtype), X], axis=1)))
     lab_k = room_labels(run, rooms)
@@ -261,5 +262,5 @@ def _figure(out, rows: list[dict[str, Any]], n_rooms: int, seeds: list[int]) -> 
     ax.set_title(f"room cells in generated {n_rooms}-room flats", fontsize=10)
     ax.legend(fontsize=7, loc="lower right")
     fig.tight_layout()
-    fig.savefig(out / "rooms.png", dpi=110)
+    save_figure(fig, out / "rooms.png", dpi=110)
     plt.close(fig)

@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo.io import load_json, save_json
+from hippo.io import load_json, save_figure, save_json, save_npz
 from hippo.perception import RCSFAICA, ICAConvergenceWarning, fit_leak_sweep
 from hippo.perception import metrics as M
 from hippo.perception.sensor_guard import SensorGuard
@@ -348,12 +348,12 @@ def run(args: argparse.Namespace) -> dict:
     if fault_rows:
         metrics["faults"] = _fault_summary(fault_rows)
     U = rec.sensors
-    np.savez_compressed(
-        out / "run.npz", t=rec.t, x=rec.x, y=rec.y, label=rec.label, region=rec.region,
+    save_npz(out / "run.npz", dict(
+        t=rec.t, x=rec.x, y=rec.y, label=rec.label, region=rec.region,
         sensors=U, n_train=n_train, Y=keep["paper"]["Y"], Ysfa=keep["paper"]["Ysfa"],
         Y_kid=keep["paper"].get("Y_kid", np.zeros(0)), x_kid=rec_kid.x, y_kid=rec_kid.y,
         label_kid=rec_kid.label, kidnap_ticks=np.array(events),
-        Y_corridor_leaks=keep["corridor"]["Y"])
+        Y_corridor_leaks=keep["corridor"]["Y"]))
     if args.figures:
         _figures(out, arena, rec, rec_kid, n_train, events, keep, configs["paper"])
         if sweep is not None:
@@ -431,7 +431,7 @@ def _sweep_figure(out, rows: list[dict[str, Any]]) -> None:
                  f" and recovery <= {TARGETS['kidnap_recovery_ticks']} ticks); SMC09: 0.05/0.15",
                  fontsize=10)
     fig.tight_layout()
-    fig.savefig(out / "leak_sweep.png", dpi=110)
+    save_figure(fig, out / "leak_sweep.png", dpi=110)
     plt.close(fig)
 
 
@@ -470,8 +470,8 @@ def _figures(out, arena, rec, rec_kid, n_train, events, keep, leak) -> None:
         title=f"corridor cell (ICA unit {k + 1}), leaks 0.11/0.14: balanced accuracy "
               f"{c['corridor_cell_test_balanced_accuracy']:.3f}",
         truth=_room_masks(rec)["corridor"][te], truth_label="in corridor")
-    for name, fig in figs.items():
-        fig.savefig(out / name, dpi=110)
+    for name, (fig, _) in figs.items():
+        save_figure(fig, out / name, dpi=110)
         plt.close(fig)
 
 
@@ -503,7 +503,7 @@ def _fault_curve(model: RCSFAICA, U: np.ndarray, rooms: dict[str, np.ndarray], n
     The room cell is the one chosen on the clean training part."""
     guard = SensorGuard().fit(U[:n_train])
     res = model.reservoir_
-    x_end = res.run(U[:n_train]).cpu().numpy()[-1]
+    x_end = np.asarray(res.run(U[:n_train]))[-1]
     te = slice(n_train, len(U))
     m = rooms["room"][te]
     truth = rooms["room_b"][te][m]
@@ -517,7 +517,7 @@ def _fault_curve(model: RCSFAICA, U: np.ndarray, rooms: dict[str, np.ndarray], n
                 Ut_v = guard.clean(np.concatenate([U[n_train - W:n_train], Ut]))[W:]
             else:
                 Ut_v = Ut
-            X = res.run(Ut_v, x0=x_end).cpu().numpy()
+            X = np.asarray(res.run(Ut_v, x0=x_end))
             Z = np.concatenate([Ut_v.astype(X.dtype), X], axis=1)
             Y = model.ica_.transform(model.sfa_.transform(Z))
             rows.append({"seed": seed, "variant": variant, "n_dead": len(faults.dead),
@@ -583,5 +583,5 @@ def _fault_figure(out, summary: dict[str, Any], seeds: list[int]) -> None:
         ",".join(map(str, seeds))
     fig.suptitle(f"room cell under sensor faults (seeds {s}; red: targets)", fontsize=10)
     fig.tight_layout()
-    fig.savefig(out / "faults.png", dpi=110)
+    save_figure(fig, out / "faults.png", dpi=110)
     plt.close(fig)

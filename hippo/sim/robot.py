@@ -20,6 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hippo._checks import check_fields
+
 
 @dataclass(frozen=True)
 class SensorModel:
@@ -32,6 +34,7 @@ class SensorModel:
     noise_sd: float = 0.02
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if not 0 <= self.range_min < self.range_max:
             raise ValueError(f"sensor range must satisfy 0 <= min < max, got "
                              f"[{self.range_min}, {self.range_max}]")
@@ -62,6 +65,9 @@ def get_sensor_model(name: str | SensorModel) -> SensorModel:
     """Look up ``"ir8"`` / ``"ray17"`` (or pass a :class:`SensorModel` through)."""
     if isinstance(name, SensorModel):
         return name
+    if not isinstance(name, str):
+        raise ValueError(f"sensors must be a sensor model name ({', '.join(SENSOR_MODELS)}) or "
+                         f"a SensorModel, got {name!r}")
     try:
         return SENSOR_MODELS[name]
     except KeyError:
@@ -82,6 +88,7 @@ class RobotParams:
     moving_threshold: float = 0.3  #: cm/s of translation above which the robot "is moving"
 
     def __post_init__(self) -> None:
+        check_fields(self)
         for name in ("radius", "axle", "mass", "speed_max"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):

@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-import torch
 
 from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
 
@@ -48,7 +47,7 @@ def test_seeded_and_independent_streams():
 def test_leak_one_is_standard_esn():
     r = Reservoir(small(leak=1.0), dtype="float64")
     U = _inputs()
-    X = r.run(U).numpy()
+    X = r.run(U)
     x = np.zeros(r.n_neurons)
     for t, u in enumerate(U):
         x = np.tanh(r.W_in @ u + r.W_res @ x)
@@ -58,7 +57,7 @@ def test_leak_one_is_standard_esn():
 def test_leak_inside_tanh():
     r = Reservoir(small(leak=(0.05, 0.15)), dtype="float64")
     U = _inputs(50)
-    X = r.run(U).numpy()
+    X = r.run(U)
     a = r.leak
     x = np.zeros(r.n_neurons)
     for t, u in enumerate(U):
@@ -71,8 +70,8 @@ def test_echo_state_property():
     r = Reservoir(small(leak=0.3, spectral_radius=0.9), dtype="float64")
     U = _inputs(1500)
     x0 = np.random.default_rng(9).uniform(-1, 1, r.n_neurons)
-    Xa = r.run(U).numpy()
-    Xb = r.run(U, x0=x0).numpy()
+    Xa = r.run(U)
+    Xb = r.run(U, x0=x0)
     assert np.abs(Xa[0] - Xb[0]).max() > 0.1
     assert np.abs(Xa[-1] - Xb[-1]).max() < 1e-6
 
@@ -81,7 +80,7 @@ def test_echo_state_property():
 def test_run_equals_repeated_step(dtype, tol):
     r = Reservoir(small(n_neurons=200), dtype=dtype)
     U = _inputs(400)
-    X = r.run(U).numpy()
+    X = r.run(U)
     r.reset()
     S = np.array([r.step(u).copy() for u in U])
     np.testing.assert_allclose(S, X, atol=tol)
@@ -90,16 +89,16 @@ def test_run_equals_repeated_step(dtype, tol):
 def test_batched_equals_unbatched():
     r = Reservoir(small(), dtype="float64")
     U = np.stack([_inputs(200, seed=s) for s in range(3)])
-    Xb = r.run(U).numpy()
+    Xb = r.run(U)
     assert Xb.shape == (3, 200, 60)
     for b in range(3):
-        np.testing.assert_allclose(Xb[b], r.run(U[b]).numpy(), atol=1e-12)
+        np.testing.assert_allclose(Xb[b], r.run(U[b]), atol=1e-12)
     # leak sweep: one stream, B leak configurations over the same W_res
     leaks = np.array([[0.05, 0.15], [0.11, 0.14], [1.0, 1.0]])
-    Xs = r.run(U[0], leak=leaks).numpy()
+    Xs = r.run(U[0], leak=leaks)
     assert Xs.shape == (3, 200, 60)
     for b, lk in enumerate(leaks):
-        np.testing.assert_allclose(Xs[b], r.run(U[0], leak=tuple(lk)).numpy(), atol=1e-12)
+        np.testing.assert_allclose(Xs[b], r.run(U[0], leak=tuple(lk)), atol=1e-12)
 
 
 def test_expand_leak():
@@ -129,26 +128,44 @@ def test_bad_parameters_and_inputs():
         r.step(np.array([np.nan] + [0.0] * 7))
 
 
-def test_torch_input_and_dtype():
+def test_numpy_dtype_and_shape():
     r = Reservoir(small())
-    X = r.run(torch.rand(20, 8))
-    assert X.dtype == torch.float32 and X.shape == (20, 60)
+    X = r.run(np.random.default_rng(0).random((20, 8)))
+    assert isinstance(X, np.ndarray) and X.dtype == np.float32 and X.shape == (20, 60)
+    assert Reservoir(small(), dtype="float64").run(np.zeros((5, 8))).dtype == np.float64
+
+
+def test_bad_backend_dtype_and_device():
+    with pytest.raises(ValueError, match="dtype"):
+        Reservoir(small(), dtype="float16")
+    with pytest.raises(ValueError, match="device"):
+        Reservoir(small(), device="tpu")
+    with pytest.raises(ValueError, match="backend"):
+        Reservoir(small()).run(np.zeros((5, 8)), backend="jax")
+
+
+def test_torch_input_accepted():
+    torch = pytest.importorskip("torch")
+    r = Reservoir(small())
+    U = torch.rand(20, 8)
+    np.testing.assert_array_equal(r.run(U), r.run(U.numpy()))
 
 
 def test_numpy_and_torch_backends_agree():
+    pytest.importorskip("torch")
     r = Reservoir(small(), dtype="float64")
     U = _inputs(200)
-    np.testing.assert_allclose(r.run(U).numpy(), r.run(U, backend="torch").numpy(), atol=1e-12)
+    np.testing.assert_allclose(r.run(U), r.run(U, backend="torch"), atol=1e-12)
     leaks = np.array([[0.05, 0.15], [0.5, 0.9]])
-    np.testing.assert_allclose(r.run(U, leak=leaks).numpy(),
-                               r.run(U, leak=leaks, backend="torch").numpy(), atol=1e-12)
+    np.testing.assert_allclose(r.run(U, leak=leaks),
+                               r.run(U, leak=leaks, backend="torch"), atol=1e-12)
 
 
 def test_threads_do_not_change_the_states():
     r = Reservoir(small(), dtype="float64")
     U = _inputs(300)
     leaks = np.array([[0.05, 0.15], [0.11, 0.14], [0.3, 0.3], [1.0, 1.0]])
-    one = r.run(U, leak=leaks, threads=1).numpy()
-    two = r.run(U, leak=leaks, threads=2).numpy()
+    one = r.run(U, leak=leaks, threads=1)
+    two = r.run(U, leak=leaks, threads=2)
     np.testing.assert_allclose(one, two, atol=1e-12)
-    np.testing.assert_allclose(r.run(U, threads=2).numpy(), r.run(U).numpy(), atol=1e-12)
+    np.testing.assert_allclose(r.run(U, threads=2), r.run(U), atol=1e-12)
