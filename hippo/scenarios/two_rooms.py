@@ -484,7 +484,7 @@ def _fault_conditions(n_sensors: int, seed: int, quick: bool) -> list[SensorFaul
     """Dead-sensor sets: every single sensor, and random pairs and triples, in each mode; and
     every noise level. The sets depend only on ``seed``."""
     rng = np.random.default_rng([seed, 11])
-    n_sets = 2 if quick else 4
+    n_sets = 2 if quick else 3
     sets: list[tuple[int, ...]] = [()]
     sets += [(i,) for i in range(n_sensors)][: n_sets if quick else None]
     for k in (2, 3):
