@@ -75,7 +75,7 @@ def select_leak(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams | No
     if not 0.05 <= val_fraction <= 0.5:
         raise ValueError(f"val_fraction must lie in [0.05, 0.5], got {val_fraction}")
     U = check_finite("sensor sequence U", U)
-    n_fit = int(round(len(U) * (1 - val_fraction)))
+    n_fit = round(len(U) * (1 - val_fraction))
     models = fit_leak_sweep(U[:n_fit], leaks, params, **overrides)
     scores = np.array([heldout_slowness(m, U, n_fit) for m in models])
     return Selection(list(leaks), scores, int(np.argmin(scores)), models)
