@@ -9,7 +9,20 @@ room at test ticks 150 and 640 and put back at 400 and 980 (SMC09 Fig. 7); we co
 until the room cell is right again and stays right for ``--hold`` ticks (mean over the events
 that really changed the robot's room: a wall follower that walked home by itself before being
 put back was not kidnapped). With leaks 0.11/0.14 a corridor cell appears (SMC09 Fig. 8).
-Everything is repeated over ``--seeds`` reservoirs (mean ± sd).
+Everything is repeated over ``--seeds`` (a count, or ranges and lists such as ``100-119``):
+each seed is one exploration run **and** one reservoir, so held-out seeds are new runs, not
+only new weights (mean ± sd, worst seed). The project's convention: settings are chosen on the
+tuning seeds 0-9 and reported on the held-out seeds 100-119. ``--cache DIR`` keeps the
+recordings for reuse.
+
+Ceiling (``--ceiling 1``, default): a supervised ridge read-out of the same reservoir state
+``[u; x]`` (room A vs B, 5 blocked folds in time, :func:`~hippo.perception.metrics.ridge_ceiling`)
+shows what the sensors allow next to what the unsupervised room cell reaches.
+
+Faults (``--faults 1``): sensors die (stuck at 0, stuck at 1, or noise only; 0-3 of the 8) or
+all get noisier (s.d. 0.01-0.1) at the start of the test part; the room cell chosen on clean
+training data is scored raw and behind a :class:`~hippo.perception.sensor_guard.SensorGuard`
+(``faults`` in the metrics, ``faults.png``).
 
 ``--leak`` replaces SMC09's leak pair for the room cell. ``--leak-sweep 1`` also fits a grid of
 16 leak pairs over each reservoir (:func:`~hippo.perception.fit_leak_sweep`: one batched harvest
