@@ -108,7 +108,8 @@ def _kidnapped_run(arena, rec: Recording, n_train: int, test_len: int, seed: int
     rng = np.random.default_rng([seed, 23])
     kid = []
     for k in range(150, test_len, KIDNAP_EVERY):
-        reg = next(r for r in arena.regions if r.name == rooms[int(rng.integers(len(rooms)))])
+        target = rooms[int(rng.integers(len(rooms)))]
+        reg = next(r for r in arena.regions if r.name == target)
         x0, y0, x1, y1 = reg.rects[0]
         kid.append((k, arena.sample_free_pose(rng, margin=4.0, rect=(x0 + 5, y0 + 5, x1 - 5,
                                                                       y1 - 5))))
