@@ -38,6 +38,17 @@ different from); every group becomes a leaf with a new context id. Values seen l
 with the laxer ``alpha_merge`` — they are merged back into one leaf, which keeps the id of
 the oldest child; :meth:`ContextStates.resolve` maps a retired id to its survivor.
 
+**Merging places.** Learned place cells also do the opposite of aliasing: two prototypes
+can share one stretch of track and win on alternate laps, so the robot sees ``A → B → D`` on
+one lap and ``A → C → D`` on the next. Two places are merged into one state (the CSCG measure
+of a map rewards it: what follows ``A`` becomes certain) when each has a usual way in and out
+(the most frequent predecessor and successor hold at least half of its stays), these are the
+same for both, and no step of their past or future up to ``merge_horizon`` events away — nor
+the stays in the places after them — differs (the same tests at ``alpha_merge``; until every
+step has ``min_count`` stays on both sides, they count as different). The horizon is longer
+than ``max_depth``, so a place that a split depends on is not merged away. A merged place
+starts again unsplit; :meth:`ContextStates.same` names the place it was merged into.
+
 **Memory.** Each place keeps only its last ``memory`` instances (a ring buffer), so a long
 deployment holds a bounded amount of data; trees are bounded by ``max_depth`` and the number
 of places.
@@ -53,7 +64,7 @@ from __future__ import annotations
 
 import math
 from collections import deque
-from collections.abc import Hashable, Iterable
+from collections.abc import Callable, Hashable, Iterable
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
@@ -77,6 +88,11 @@ class ContextParams:
     dwell_tolerance: dwell times differ only beyond this relative difference (default 0.5).
     weber: floor on the sd of log-dwell times (default 0.1: the batteries' Weber fraction).
     memory: instances kept per place (default 256).
+    merge_places: merge two places that the robot enters from the same place and leaves to the
+        same place, alike in their distributions of both and in dwell (default True).
+    merge_horizon: places merge only if no step of their past or future up to this many
+        events apart tells them apart (default 8; longer than ``max_depth``, so that a place
+        a split depends on is not merged away).
     """
 
     max_depth: int = 3
@@ -86,6 +102,8 @@ class ContextParams:
     dwell_tolerance: float = 0.5
     weber: float = 0.1
     memory: int = 256
+    merge_places: bool = True
+    merge_horizon: int = 8
 
     def __post_init__(self) -> None:
         if int(self.max_depth) != self.max_depth or self.max_depth < 0:
@@ -98,6 +116,8 @@ class ContextParams:
             raise ValueError(f"alpha_merge ({self.alpha_merge}) must be >= alpha ({self.alpha})")
         check_positive("dwell_tolerance", self.dwell_tolerance, allow_zero=True)
         check_positive("weber", self.weber)
+        if int(self.merge_horizon) != self.merge_horizon or self.merge_horizon < 1:
+            raise ValueError(f"merge_horizon must be an integer >= 1, got {self.merge_horizon!r}")
         if int(self.memory) != self.memory or self.memory < 2 * self.min_count:
             raise ValueError(f"memory must be an integer >= 2 * min_count "
                              f"({2 * self.min_count}), got {self.memory!r}")
@@ -135,6 +155,8 @@ class _Inst(NamedTuple):
     history: tuple
     next: Hashable
     dwell: float
+    future: list   # next, and the places after it as they come (up to merge_horizon)
+    future_dwell: list  # the stays in those places, as they end
 
 
 @dataclass(eq=False)
@@ -152,9 +174,9 @@ class _Node:
     def child(self, value: Hashable) -> _Node:
         return self.route.get(value, self.default)  # type: ignore[return-value]
 
-    def step(self, history: tuple) -> _Node:
-        """The child an instance with ``history`` goes to."""
-        return self.child(history[self.pos]) if self.pos < len(history) \
+    def step(self, history: tuple, same: Callable[[Hashable], Hashable]) -> _Node:
+        """The child an instance with ``history`` goes to (places read through ``same``)."""
+        return self.child(same(history[self.pos])) if self.pos < len(history) \
             else self.default  # type: ignore[return-value]
 
     def children(self) -> list[_Node]:
@@ -183,14 +205,18 @@ class ContextStates:
         self._data: dict[Hashable, deque[_Inst]] = {}
         self._keys: list[ContextKey] = []
         self._alias: dict[int, int] = {}
+        self._same: dict[Hashable, Hashable] = {}
         self.n_splits = 0
         self.n_merges = 0
+        self.n_place_merges = 0
         self.reset()
 
     # ------------------------------------------------------------------ sequence
     def reset(self) -> None:
         """Forget the recent history (after a kidnap): the tree and its data are kept."""
-        self._history: deque[Hashable] = deque(maxlen=self.params.max_depth + 1)
+        p = self.params
+        self._history: deque[Hashable] = deque(maxlen=max(p.max_depth, p.merge_horizon) + 1)
+        self._pending: deque[_Inst] = deque(maxlen=p.merge_horizon)
         self._entered: float | None = None
         self.current: int | None = None
 
@@ -202,26 +228,47 @@ class ContextStates:
         t = float(t)
         if not math.isfinite(t):
             raise ValueError(f"t must be a finite time in seconds, got {t!r}")
+        place = self.same(place)
         if self._history and self._entered is not None:
             if t < self._entered:
                 raise ValueError(f"time went backwards: entered at {self._entered}, now {t}")
-            prev = self._history[-1]
+            prev = self.same(self._history[-1])
             if place == prev:
                 return self.current  # type: ignore[return-value]
             hist = tuple(reversed(list(self._history)[:-1]))  # before prev, most recent first
-            self._learn(prev, _Inst(hist, place, t - self._entered))
+            for older in self._pending:
+                if len(older.future) < self.params.merge_horizon:
+                    older.future.append(place)
+                if len(older.future_dwell) < len(older.future) - 1:
+                    older.future_dwell.append(t - self._entered)  # the stay in prev ended
+            inst = _Inst(hist, place, t - self._entered, [place], [])
+            self._pending.append(inst)
+            self._learn(prev, inst)
+            self._merge_places(prev)
+            place = self.same(place)
         self._tree(place)
         self._history.append(place)
         self._entered = t
         self.current = self.context_of(place, tuple(reversed(list(self._history)[:-1])))
         return self.current
 
+    def same(self, place: Hashable) -> Hashable:
+        """The place ``place`` was merged into (itself when it never was)."""
+        while place in self._same:
+            place = self._same[place]
+        return place
+
+    def members(self, place: Hashable) -> list[Hashable]:
+        """Every place merged into the same state as ``place`` (itself included)."""
+        rep = self.same(place)
+        return [q for q in [*self._trees, *self._same] if self.same(q) == rep]
+
     def context_of(self, place: Hashable, history: Iterable[Hashable] = ()) -> int:
         """The context id of ``place`` entered after ``history`` (most recent first)."""
         h = tuple(history)
-        node = self._tree(place)
+        node = self._tree(self.same(place))
         while not node.leaf:
-            node = node.step(h)
+            node = node.step(h, self.same)
         return node.cid  # type: ignore[return-value]
 
     # ------------------------------------------------------------------ introspection
@@ -249,10 +296,12 @@ class ContextStates:
         return cid
 
     def predict(self, cid: int) -> dict[Hashable, float]:
-        """Next-place distribution of context ``cid`` (frequencies of its kept instances)."""
+        """Next-place distribution of context ``cid`` (frequencies of its kept instances; merged
+        places under the name of their state, :meth:`same`)."""
         cid = self.resolve(cid)
         place = self._keys[cid].place
-        nxt = [i.next for i in self._data.get(place, ()) if self._leaf_of(place, i) == cid]
+        nxt = [self.same(i.next) for i in self._data.get(place, ())
+               if self._leaf_of(place, i) == cid]
         if not nxt:
             return {}
         vals, counts = np.unique(np.array(nxt, dtype=object), return_counts=True)
@@ -292,7 +341,7 @@ class ContextStates:
         path, node = [], self._trees[place]
         while not node.leaf:
             path.append(node)
-            node = node.step(inst.history)
+            node = node.step(inst.history, self.same)
         for parent in reversed(path):
             if all(c.leaf for c in parent.children()) and self._merge(place, parent):
                 return
@@ -304,7 +353,7 @@ class ContextStates:
         for i in self._data[place]:
             n = self._trees[place]
             while n is not node and not n.leaf:
-                n = n.step(i.history)
+                n = n.step(i.history, self.same)
             if n is node:
                 out.append(i)
         return out
@@ -313,23 +362,34 @@ class ContextStates:
         """Do two sets of instances differ in successors or in dwell (see the docstring)?"""
         p = self.params
         alpha, z = (p.alpha_merge, self._z_merge) if merge else (p.alpha, self._z)
-        succ = sorted({i.next for i in a} | {i.next for i in b}, key=repr)
-        table = np.array([[sum(1 for i in s if i.next == n) for n in succ] for s in (a, b)])
-        if g_test(table) < alpha:
+        if self._differ_in(a, b, lambda i: self.same(i.next), alpha):
             return True
-        la = np.log(np.maximum([i.dwell for i in a], 1e-9))
-        lb = np.log(np.maximum([i.dwell for i in b], 1e-9))
+        return self._differ_dwell([i.dwell for i in a], [i.dwell for i in b], z)
+
+    def _differ_dwell(self, a: list[float], b: list[float], z: float) -> bool:
+        """Weber-tolerant test of the mean log-dwell (see the module docstring)."""
+        p = self.params
+        la = np.log(np.maximum(a, 1e-9))
+        lb = np.log(np.maximum(b, 1e-9))
         diff = abs(float(la.mean() - lb.mean()))
         se = math.sqrt(max(float(la.var()), p.weber**2) / len(la)
                        + max(float(lb.var()), p.weber**2) / len(lb))
         return diff > math.log1p(p.dwell_tolerance) and diff > z * se
+
+    def _differ_in(self, a: list[_Inst], b: list[_Inst], what: Callable[[_Inst], Hashable],
+                   alpha: float) -> bool:
+        """G-test: do ``a`` and ``b`` differ in the distribution of ``what(instance)``?"""
+        va, vb = [what(i) for i in a], [what(i) for i in b]
+        vals = sorted(set(va) | set(vb), key=repr)
+        table = np.array([[v.count(x) for x in vals] for v in (va, vb)])
+        return g_test(table) < alpha
 
     def _groups(self, insts: list[_Inst], pos: int) -> list[tuple[set, list[_Inst]]]:
         """Values of ``q_{pos+1}`` grouped by alike futures (most frequent first)."""
         by: dict[Hashable, list[_Inst]] = {}
         for i in insts:
             if pos < len(i.history):
-                by.setdefault(i.history[pos], []).append(i)
+                by.setdefault(self.same(i.history[pos]), []).append(i)
         vals = sorted((v for v in by if len(by[v]) >= self.params.min_count),
                       key=lambda v: (-len(by[v]), repr(v)))
         groups: list[tuple[set, list[_Inst]]] = []
@@ -378,3 +438,79 @@ class ContextStates:
         node.cid, node.route, node.default, node.pos = keep, {}, None, -1
         self.n_merges += 1
         return True
+
+    # ------------------------------------------------------------------ merging places
+    def _merge_places(self, place: Hashable) -> None:
+        """Merge ``place`` into another place entered from and left to the same places."""
+        p = self.params
+        if not p.merge_places:
+            return
+
+        def pred(i: _Inst) -> Hashable:
+            return self.same(i.history[0])
+
+        def succ(i: _Inst) -> Hashable:
+            return self.same(i.next)
+
+        def top(insts: list[_Inst], f: Callable[[_Inst], Hashable]) -> Hashable:
+            counts: dict[Hashable, int] = {}
+            for i in insts:
+                counts[f(i)] = counts.get(f(i), 0) + 1
+            return max(counts, key=lambda v: (counts[v], repr(v)))
+
+        mine = [i for i in self._data[place] if i.history]
+        if len(mine) < p.min_count:
+            return
+        tp, ts = top(mine, pred), top(mine, succ)
+        if min(sum(pred(i) == tp for i in mine), sum(succ(i) == ts for i in mine)) < \
+                0.5 * len(mine):
+            return  # no usual way in and out: nothing says another place is the same
+        for other in list(self._trees):
+            if other == place or other in (tp, ts):
+                continue
+            theirs = [i for i in self._data[other] if i.history]
+            if (len(theirs) < p.min_count or top(theirs, pred) != tp
+                    or top(theirs, succ) != ts
+                    or self._differ_dwell([i.dwell for i in mine], [i.dwell for i in theirs],
+                                          self._z_merge)
+                    or self._differ_around(mine, theirs)):
+                continue
+            keep, gone = (other, place) if len(self._data[other]) >= len(self._data[place]) \
+                else (place, other)
+            self._join(keep, gone)
+            return
+
+    def _differ_around(self, a: list[_Inst], b: list[_Inst]) -> bool:
+        """Do ``a`` and ``b`` differ in any step of their past or future (``merge_horizon``)?
+        Until each step has ``min_count`` instances on both sides, they count as different."""
+        p = self.params
+        for k in range(p.merge_horizon):
+            for seq in ("history", "future"):
+                aa = [i for i in a if len(getattr(i, seq)) > k]
+                bb = [i for i in b if len(getattr(i, seq)) > k]
+                if min(len(aa), len(bb)) < p.min_count:
+                    return True  # not seen enough yet to call them the same
+                if self._differ_in(aa, bb, lambda i, s=seq, k=k: self.same(getattr(i, s)[k]),
+                                   p.alpha_merge):
+                    return True
+            da = [i.future_dwell[k] for i in a if len(i.future_dwell) > k]
+            db = [i.future_dwell[k] for i in b if len(i.future_dwell) > k]
+            if min(len(da), len(db)) >= p.min_count and self._differ_dwell(da, db, self._z_merge):
+                return True
+        return False
+
+    def _join(self, keep: Hashable, gone: Hashable) -> None:
+        """``gone`` becomes the same state as ``keep``: one unsplit place again, whose id is the
+        oldest of their contexts (the others are retired into it)."""
+        self._same[gone] = keep
+        data = self._data[keep]
+        for i in self._data.pop(gone):
+            data.append(i)
+        leaves = self._leaves(self._trees[keep]) + self._leaves(self._trees.pop(gone))
+        root = min(n.cid for n in leaves)  # type: ignore[type-var]
+        for n in leaves:
+            if n.cid != root:
+                self._alias[n.cid] = root  # type: ignore[index]
+        self._trees[keep] = _Node(0, cid=root)
+        self._keys[root] = ContextKey(keep, ())
+        self.n_place_merges += 1

@@ -54,6 +54,8 @@ def test_aliased_corridor_splits_the_shared_stretch_exactly_where_needed():
         exits[next(iter(entry))] = cs.predict(c)
     assert exits == {"A": {"D": 1.0}, "B": {"E": 1.0}}
     assert cs.context_of("C3", ("C2", "C1", "A")) != cs.context_of("C3", ("C2", "C1", "B"))
+    # A and B (and D and E) look alike one step around but not three: never merged
+    assert cs.n_place_merges == 0
 
 
 def test_split_states_predict_the_next_place_where_the_place_cannot():
@@ -148,3 +150,34 @@ def test_bad_input_is_named():
         cs.observe("B", 1.0)
     with pytest.raises(ValueError, match="unknown context id"):
         cs.resolve(99)
+
+
+def test_places_that_take_turns_merge_into_one_state():
+    # two prototypes share one stretch and win on alternate laps at random: H A {B|C} D H ...
+    rng = np.random.default_rng(7)
+    cs, t, seq = ContextStates(), 0.0, []
+    for _ in range(60):
+        for p in ("H", "A", "B" if rng.integers(2) == 0 else "C", "D"):
+            t += 2.0 * math.exp(0.05 * rng.standard_normal())
+            seq.append((p, cs.observe(p, t)))
+    assert cs.n_place_merges == 1
+    assert cs.same("B") == cs.same("C") and sorted(cs.members("B")) == ["B", "C"]
+    assert cs.context_of("B") == cs.context_of("C")
+    # after the merge, what follows A is certain: the merged state
+    merged = cs.context_of("A")
+    assert cs.predict(merged) == {cs.same("B"): 1.0}
+    # every id issued for B or C before the merge resolves to the merged state
+    assert {cs.resolve(c) for p, c in seq if p in "BC"} == {cs.context_of("B")}
+
+
+def test_places_that_differ_in_the_dwell_after_them_do_not_merge():
+    # as above, but after C the robot stays 3x longer in D: C is not the same as B
+    rng = np.random.default_rng(8)
+    cs, t = ContextStates(), 0.0
+    for _ in range(60):
+        mid = "B" if rng.integers(2) == 0 else "C"
+        for p, d in (("H", 2.0), ("A", 2.0), (mid, 2.0), ("D", 6.0 if mid == "C" else 2.0)):
+            cs.observe(p, t)
+            t += d * math.exp(0.05 * rng.standard_normal())
+    assert cs.n_place_merges == 0
+    assert len(cs.states_of("D")) == 2  # and D splits by the way in
