@@ -2,7 +2,13 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import numbers
+import operator
+import types
+import typing
+from collections.abc import Iterable
 from typing import Any
 
 import numpy as np
@@ -60,3 +66,154 @@ def check_shape(name: str, arr: np.ndarray, shape: tuple[int | None, ...]) -> np
         want = "(" + ", ".join("*" if s is None else str(s) for s in shape) + ")"
         raise ValueError(f"{name} must have shape {want}, got {a.shape}")
     return a
+
+
+def check_int(name: str, value: Any, *, lo: int | None = None, hi: int | None = None) -> int:
+    """Return ``value`` as an ``int``, or raise ``ValueError`` naming it.
+
+    Integers (Python or numpy) only: ``10.5``, ``10.0``, ``"10"`` and ``True`` are refused, so a
+    computed float never silently becomes a size. ``lo`` / ``hi`` bound it (inclusive).
+    """
+    if isinstance(value, bool | np.bool_):
+        raise ValueError(f"{name} must be an integer, got {value!r} (a bool)")
+    try:
+        v = operator.index(value)
+    except TypeError:
+        raise ValueError(f"{name} must be an integer, got {value!r} "
+                         f"({type(value).__name__})") from None
+    if (lo is not None and v < lo) or (hi is not None and v > hi):
+        rng = (f">= {lo}" if hi is None else f"<= {hi}" if lo is None
+               else f"in [{lo}, {hi}]")
+        raise ValueError(f"{name} must be an integer {rng}, got {value!r}")
+    return v
+
+
+def check_seed(name: str, value: Any) -> int:
+    """A seed for ``numpy.random.default_rng``: an integer in [0, 2**63)."""
+    return check_int(name, value, lo=0, hi=2**63 - 1)
+
+
+def check_choice(name: str, value: Any, choices: Iterable[Any]) -> Any:
+    """Raise ``ValueError`` unless ``value`` is one of ``choices`` (compared with ==, same type)."""
+    options = tuple(choices)
+    for c in options:
+        if type(value) is type(c) and value == c:
+            return value
+    listed = ", ".join(repr(c) for c in options)
+    raise ValueError(f"{name} must be one of {listed}; got {value!r}")
+
+
+def check_real(name: str, value: Any) -> float:
+    """Return ``value`` as a finite ``float``; bools, strings, NaN and inf are refused."""
+    if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Real):
+        raise ValueError(f"{name} must be a real number, got {value!r} "
+                         f"({type(value).__name__})")
+    v = float(value)
+    if not math.isfinite(v):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return v
+
+
+def check_array(name: str, value: Any, *, shape: tuple[int | None, ...] | None = None,
+                dtype: str = "float", finite: bool = True) -> np.ndarray:
+    """Check a loaded or given array: its kind (``float``: real numbers; ``int``: integers;
+    ``bool``), its ``shape`` (None = any size), and (numbers) finiteness. Returns a copy of
+    type float64 / int64 / bool."""
+    a = np.asarray(value)
+    kind = a.dtype.kind
+    if dtype == "float":
+        if kind not in "fiu":
+            raise ValueError(f"{name} must hold real numbers, got dtype {a.dtype}")
+        a = a.astype(np.float64)
+    elif dtype == "int":
+        if kind not in "iu":
+            raise ValueError(f"{name} must hold integers, got dtype {a.dtype}")
+        a = a.astype(np.int64)
+    elif dtype == "bool":
+        if kind != "b":
+            raise ValueError(f"{name} must hold booleans, got dtype {a.dtype}")
+        a = a.copy()
+    else:  # pragma: no cover - programming error
+        raise ValueError(f"unknown dtype kind {dtype!r}")
+    if shape is not None:
+        check_shape(name, a, shape)
+    if finite and dtype == "float" and not np.isfinite(a).all():
+        bad = int(a.size - np.count_nonzero(np.isfinite(a)))
+        raise ValueError(f"{name} contains {bad} non-finite value(s) (NaN or inf)")
+    return a
+
+
+def _hint_ok(value: Any, hint: Any) -> bool:
+    """Does ``value`` fit the type hint? Unknown hints accept anything."""
+    origin = typing.get_origin(hint)
+    if hint is Any:
+        return True
+    if hint is type(None):
+        return value is None
+    if origin in (typing.Union, types.UnionType):
+        return any(_hint_ok(value, h) for h in typing.get_args(hint))
+    if origin is typing.Literal:
+        return any(type(value) is type(c) and value == c for c in typing.get_args(hint))
+    if hint is bool:
+        return isinstance(value, bool | np.bool_)
+    if hint is int:
+        return isinstance(value, numbers.Integral) and not isinstance(value, bool | np.bool_)
+    if hint is float:
+        return (isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_)
+                and math.isfinite(float(value)))
+    if hint is str:
+        return isinstance(value, str)
+    if origin is tuple:
+        args = typing.get_args(hint)
+        if not isinstance(value, tuple):
+            return False
+        if len(args) == 2 and args[1] is Ellipsis:
+            return all(_hint_ok(v, args[0]) for v in value)
+        return len(args) == len(value) and all(_hint_ok(v, h) for v, h in zip(args, value))
+    if isinstance(hint, type) and dataclasses.is_dataclass(hint):
+        return isinstance(value, hint)
+    return True
+
+
+def _describe(hint: Any) -> str:
+    origin = typing.get_origin(hint)
+    if hint is type(None):
+        return "None"
+    if origin in (typing.Union, types.UnionType):
+        return " or ".join(_describe(h) for h in typing.get_args(hint))
+    if origin is typing.Literal:
+        return "one of " + ", ".join(repr(c) for c in typing.get_args(hint))
+    if origin is tuple:
+        args = typing.get_args(hint)
+        if len(args) == 2 and args[1] is Ellipsis:
+            return f"a tuple of {_describe(args[0])}"
+        return "a tuple (" + ", ".join(_describe(a) for a in args) + ")"
+    names = {bool: "a bool", int: "an integer", float: "a finite real number", str: "a string"}
+    return names.get(hint, getattr(hint, "__name__", str(hint)))
+
+
+def check_fields(obj: Any) -> None:
+    """Check every field of the dataclass ``obj`` against its annotated type.
+
+    ``int`` fields take integers only (``10.5``, ``True`` refused), ``float`` fields finite real
+    numbers, ``bool`` fields bools, ``str`` fields strings, ``Literal`` fields one of their
+    values, nested parameter dataclasses their class; a field named ``seed`` must be an integer
+    >= 0 (or None where allowed). The error names the class, the field, the value and what is
+    allowed. Call it first in ``__post_init__``; range checks come after.
+    """
+    cls = type(obj)
+    hints = _HINTS.get(cls)
+    if hints is None:
+        hints = typing.get_type_hints(cls)
+        _HINTS[cls] = hints
+    for f in dataclasses.fields(obj):
+        value = getattr(obj, f.name)
+        hint = hints.get(f.name, Any)
+        if not _hint_ok(value, hint):
+            raise ValueError(f"{cls.__name__}.{f.name} must be {_describe(hint)}, "
+                             f"got {value!r} ({type(value).__name__})")
+        if f.name == "seed" and value is not None:
+            check_seed(f"{cls.__name__}.seed", value)
+
+
+_HINTS: dict[type, dict[str, Any]] = {}

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import io
 import json
 import os
 import tempfile
-import zipfile
+import time
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
@@ -17,11 +18,51 @@ class CorruptFileError(ValueError):
     """A saved file is missing, truncated, not what it claims to be, or lacks required keys."""
 
 
+#: a temporary file older than this (s) in a folder being written to is a leftover of a crash
+STALE_AGE = 60.0
+
+
+def _umask() -> int:
+    """The process's umask (read by setting and restoring it; there is no getter)."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def clean_stale_temps(folder: str | os.PathLike, *, max_age: float = STALE_AGE) -> list[Path]:
+    """Remove the temporary files (``.NAME.*.tmp``) that a write killed mid-way left in
+    ``folder``, if older than ``max_age`` seconds (a younger one may belong to a write in
+    progress in another process). Returns the removed paths. Called by every atomic write."""
+    folder = Path(folder)
+    removed = []
+    now = time.time()
+    try:
+        candidates = list(folder.glob(".*.tmp"))
+    except OSError:
+        return removed
+    for p in candidates:
+        try:
+            if p.is_file() and now - p.stat().st_mtime > max_age:
+                p.unlink()
+                removed.append(p)
+        except OSError:  # gone already, or not ours to remove
+            continue
+    return removed
+
+
 def _atomic_write(path: Path, write) -> Path:
+    """Write through a temporary file in the same folder, then ``os.replace`` it into place.
+
+    The file gets the permissions a plain ``open(path, "w")`` would give (``0o666 & ~umask``;
+    ``mkstemp`` alone would leave it ``0o600``); stale temporary files of killed writes in the
+    folder are removed first.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
+    clean_stale_temps(path.parent)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
+        os.chmod(tmp, 0o666 & ~_umask())
         with os.fdopen(fd, "wb") as fh:
             write(fh)
             fh.flush()
@@ -65,11 +106,15 @@ def load_npz(path: str | os.PathLike, required: Iterable[str] = ()) -> dict[str,
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"no such file: {path}")
+    if not path.is_file():
+        raise CorruptFileError(f"{path} is not a file")
     try:
         with np.load(path, allow_pickle=False) as data:
+            if not isinstance(data, np.lib.npyio.NpzFile):
+                raise ValueError("a single .npy array, not an .npz archive")
             out = {k: data[k] for k in data.files}
-    except (zipfile.BadZipFile, OSError, EOFError, ValueError, KeyError) as exc:
-        raise CorruptFileError(f"{path} is not a readable .npz file ({exc})") from exc
+    except Exception as exc:  # zip, zlib, header, dtype, size: any failure is a corrupt file
+        raise CorruptFileError(f"{path} is not a readable .npz file ({exc!r:.300})") from exc
     missing = [k for k in required if k not in out]
     if missing:
         raise CorruptFileError(f"{path} lacks required array(s): {', '.join(missing)}")
@@ -95,7 +140,19 @@ def save_json(path: str | os.PathLike, obj: Any) -> Path:
 def load_json(path: str | os.PathLike) -> Any:
     """Read a JSON file, raising :class:`CorruptFileError` on malformed content."""
     path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"no such file: {path}")
     try:
-        return json.loads(path.read_text())
-    except json.JSONDecodeError as exc:
-        raise CorruptFileError(f"{path} is not valid JSON ({exc})") from exc
+        return json.loads(path.read_bytes().decode("utf-8"))
+    except (ValueError, RecursionError) as exc:  # JSON, UTF-8, or absurdly nested
+        raise CorruptFileError(f"{path} is not valid JSON ({exc!r:.300})") from exc
+
+
+def save_figure(fig: Any, path: str | os.PathLike, **kwargs: Any) -> Path:
+    """``fig.savefig(path, **kwargs)``, atomically (the format follows the file's suffix)."""
+    path = Path(path)
+    kwargs.setdefault("format", path.suffix.lstrip(".") or "png")
+    buf = io.BytesIO()
+    fig.savefig(buf, **kwargs)
+    data = buf.getvalue()
+    return _atomic_write(path, lambda fh: fh.write(data))

@@ -38,9 +38,12 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from hippo._checks import check_positive, check_range
+from hippo._checks import check_fields, check_positive, check_range
 from hippo.cognitive_map.graph import Transition, as_transition
 from hippo.io import CorruptFileError, load_json, save_json
+
+DRIVES_FORMAT = "hippo.cognitive_map.Drives/1"
+_DRIVE_KEYS = {"name", "params", "level", "inhibited", "links"}
 
 
 @dataclass(frozen=True)
@@ -61,6 +64,7 @@ class DriveParams:
     initial: float = 0.0
 
     def __post_init__(self) -> None:
+        check_fields(self)
         check_positive("DriveParams.epsilon", self.epsilon, allow_zero=True)
         check_range("DriveParams.learning_rate", self.learning_rate, 0.0, 1.0, closed="right")
         check_range("DriveParams.extinction", self.extinction, 0.0, 1.0)
@@ -256,7 +260,7 @@ class Drives:
     # ---------------------------------------------------------------- persistence
     def to_dict(self) -> dict[str, Any]:
         return {
-            "format": "hippo.cognitive_map.Drives/1",
+            "format": DRIVES_FORMAT,
             "drives": [
                 {"name": n, "params": asdict(p), "level": self._level[n],
                  "inhibited": n in self._inhibited,
@@ -267,15 +271,45 @@ class Drives:
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> Drives:
+        """Rebuild drives from :meth:`to_dict`'s form, checking every field's type and range
+        (``ValueError`` naming the bad one)."""
+        if not isinstance(data, Mapping) or data.get("format") != DRIVES_FORMAT:
+            got = data.get("format") if isinstance(data, Mapping) else type(data).__name__
+            raise ValueError(f"not saved drives (format {got!r}, want {DRIVES_FORMAT!r})")
+        items = data.get("drives")
+        if not isinstance(items, list):
+            raise ValueError(f"'drives' must be a list, got {type(items).__name__}")
         d = cls()
-        for item in data["drives"]:
+        for item in items:
+            if not isinstance(item, Mapping) or set(item) != _DRIVE_KEYS:
+                raise ValueError(f"a drive entry must have exactly the keys {sorted(_DRIVE_KEYS)}"
+                                 f", got {item!r:.120}")
             name = item["name"]
+            if not isinstance(item["params"], Mapping):
+                raise ValueError(f"params of drive {name!r} must be an object")
             d.add(name, DriveParams(**item["params"]))
-            d.set_level(name, item["level"])
+            level = item["level"]
+            if isinstance(level, bool) or not isinstance(level, int | float):
+                raise ValueError(f"level of drive {name!r} must be a number, got {level!r}")
+            d.set_level(name, level)
+            if not isinstance(item["inhibited"], bool):
+                raise ValueError(f"inhibited of drive {name!r} must be true or false, got "
+                                 f"{item['inhibited']!r}")
             if item["inhibited"]:
                 d._inhibited.add(name)
-            for a, b, w in item["links"]:
-                d._links[name][as_transition((a, b))] = check_range("link weight", w, 0.0, 1.0)
+            if not isinstance(item["links"], list):
+                raise ValueError(f"links of drive {name!r} must be a list")
+            for link in item["links"]:
+                if not isinstance(link, list) or len(link) != 3:
+                    raise ValueError(f"a link of drive {name!r} must be [a, b, weight], got "
+                                     f"{link!r}")
+                a, b, w = link
+                if isinstance(w, bool) or not isinstance(w, int | float):
+                    raise ValueError(f"link weight must be a number, got {w!r}")
+                t = as_transition((a, b))
+                if t in d._links[name]:
+                    raise ValueError(f"drive {name!r} links {t} twice")
+                d._links[name][t] = check_range("link weight", w, 0.0, 1.0)
         return d
 
     def save(self, path: str | os.PathLike) -> Path:
@@ -284,8 +318,10 @@ class Drives:
 
     @classmethod
     def load(cls, path: str | os.PathLike) -> Drives:
+        """Read drives written by :meth:`save`; a damaged file raises
+        :class:`~hippo.io.CorruptFileError` naming the problem."""
         data = load_json(path)
         try:
             return cls.from_dict(data)
-        except (KeyError, TypeError, ValueError) as exc:
-            raise CorruptFileError(f"{path}: bad drives content ({exc!r})") from exc
+        except (KeyError, TypeError, ValueError, OverflowError) as exc:
+            raise CorruptFileError(f"{path}: bad drives content ({exc})") from exc

@@ -35,7 +35,6 @@ import json
 import math
 import operator
 import os
-import xml.etree.ElementTree as ET
 from collections.abc import Callable, Hashable, Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -122,13 +121,17 @@ def _as_action(action: ActionLike) -> Action:
 
 
 def state_id(value: Any, name: str = "state") -> int:
-    """Return ``value`` as an ``int`` state id, or raise ``ValueError`` (no bools, no floats)."""
+    """Return ``value`` as an ``int`` state id >= 0, or raise ``ValueError`` (no bools, no
+    floats, no negative ids: the same ids as :mod:`hippo.timing`)."""
     if isinstance(value, bool | np.bool_):
         raise ValueError(f"{name} must be an integer state id, got {value!r}")
     try:
-        return operator.index(value)
+        v = operator.index(value)
     except TypeError:
         raise ValueError(f"{name} must be an integer state id, got {value!r}") from None
+    if v < 0:
+        raise ValueError(f"{name} must be a state id >= 0, got {v}")
+    return v
 
 
 def as_transition(t: Any) -> Transition:
@@ -452,37 +455,39 @@ class TransitionGraph:
 
     @classmethod
     def from_graphml(cls, path: str | os.PathLike) -> TransitionGraph:
-        """Read a map written by :meth:`to_graphml`; :class:`~hippo.io.CorruptFileError` if bad."""
+        """Read a map written by :meth:`to_graphml`; :class:`~hippo.io.CorruptFileError` if bad.
+
+        Nothing is trusted: every node attribute must have its type (integers as integers,
+        finite floats) and lie in its range (ids >= 0; ``count >= 1``; ``0 <= n_wait, n_delay
+        <= count``; the action the majority of ``n_wait``; a move has a heading in (-π, π], a
+        ``heading_r`` in [0, 1] and a distance >= 0; delay >= 0 and present exactly when
+        ``n_delay > 0``; strength in [0, 1]); unknown attributes, node ids that do not match
+        their ``a``/``b``, state positions that are not finite, and links that break the
+        ``A->B -> B->C`` rule are refused. The map is built only once every check passed.
+        """
         path = Path(path)
         if not path.exists():
             raise FileNotFoundError(f"no such file: {path}")
         try:
             h = nx.read_graphml(path, node_type=str)
-        except (ET.ParseError, nx.NetworkXError, ValueError, KeyError) as exc:
-            raise CorruptFileError(f"{path} is not a readable GraphML file ({exc})") from exc
+        except Exception as exc:  # any parse failure of the file is a corrupt file
+            raise CorruptFileError(f"{path} is not a readable GraphML file ({exc!r})") from exc
         if h.graph.get("format") != GRAPHML_FORMAT:
             raise CorruptFileError(
                 f"{path} is not a hippo transition graph (format {h.graph.get('format')!r})")
+        if not isinstance(h, nx.DiGraph) or isinstance(h, nx.MultiDiGraph):
+            raise CorruptFileError(f"{path} is not a directed simple graph")
         g = cls()
         try:
-            for s, x, y, n in json.loads(h.graph.get("states", "[]")):
-                g._states[state_id(s)] = None if x is None else (float(x), float(y))
-                g._pos_n[state_id(s)] = int(n)
+            g._read_states(h.graph.get("states", "[]"))
             for nid, d in h.nodes(data=True):
-                attrs: dict[str, Any] = {k: int(d[k]) for k in _INT_ATTRS}
-                attrs["action"] = str(d["action"])
-                if attrs["action"] not in (MOVE, WAIT):
-                    raise ValueError(f"bad action {attrs['action']!r}")
-                for k in _FLOAT_ATTRS:
-                    attrs[k] = float(d[k]) if k in d else None
-                if attrs["strength"] is None:
-                    raise KeyError("strength")
+                attrs = _checked_node(nid, d)
                 t = (attrs["a"], attrs["b"])
-                if _node_id(t) != nid:
-                    raise ValueError(f"node id {nid!r} does not match a={t[0]}, b={t[1]}")
+                if t in g._g:
+                    raise ValueError(f"transition {nid} appears twice")
                 g._insert(t, attrs)
-        except (KeyError, ValueError, TypeError, json.JSONDecodeError) as exc:
-            raise CorruptFileError(f"{path}: bad transition graph content ({exc!r})") from exc
+        except (KeyError, ValueError, TypeError, OverflowError, json.JSONDecodeError) as exc:
+            raise CorruptFileError(f"{path}: bad transition graph content ({exc})") from exc
         file_edges = set(h.edges)
         own_edges = {(_node_id(u), _node_id(v)) for u, v in g._g.edges}
         if file_edges != own_edges:
@@ -491,6 +496,31 @@ class TransitionGraph:
                 f"({len(file_edges - own_edges)} extra, {len(own_edges - file_edges)} missing)")
         return g
 
+    def _read_states(self, text: Any) -> None:
+        if not isinstance(text, str):
+            raise ValueError(f"the graph attribute 'states' must be a JSON string, got {text!r}")
+        rows = json.loads(text)
+        if not isinstance(rows, list):
+            raise ValueError("'states' must be a list of [state, x, y, n]")
+        for row in rows:
+            if not isinstance(row, list) or len(row) != 4:
+                raise ValueError(f"a state row must be [state, x, y, n], got {row!r}")
+            s, x, y, n = row
+            s = _file_int("state", s, lo=0)
+            if s in self._states:
+                raise ValueError(f"state {s} is listed twice")
+            n = _file_int(f"observation count of state {s}", n, lo=0)
+            if x is None and y is None:
+                if n != 0:
+                    raise ValueError(f"state {s} has no position but {n} observations")
+                self._states[s] = None
+            else:
+                self._states[s] = (_file_float(f"x of state {s}", x),
+                                   _file_float(f"y of state {s}", y))
+                if n < 1:
+                    raise ValueError(f"state {s} has a position but {n} observations")
+            self._pos_n[s] = n
+
     def same_as(self, other: TransitionGraph) -> bool:
         """True when both maps hold the same transitions, links, attributes and states."""
         return (self._states == other._states
@@ -498,6 +528,67 @@ class TransitionGraph:
                 and all(self._pos_n.get(s) == other._pos_n.get(s) for s in self.positions)
                 and dict(self._g.nodes(data=True)) == dict(other._g.nodes(data=True))
                 and set(self._g.edges) == set(other._g.edges))
+
+
+def _file_int(name: str, v: Any, lo: int | None = None) -> int:
+    if isinstance(v, bool) or not isinstance(v, int):
+        raise ValueError(f"{name} must be an integer, got {v!r}")
+    if lo is not None and v < lo:
+        raise ValueError(f"{name} must be >= {lo}, got {v}")
+    return v
+
+
+def _file_float(name: str, v: Any, lo: float = -math.inf, hi: float = math.inf) -> float:
+    if isinstance(v, bool) or not isinstance(v, int | float):
+        raise ValueError(f"{name} must be a number, got {v!r}")
+    f = float(v)
+    if not (math.isfinite(f) and lo <= f <= hi):
+        raise ValueError(f"{name} must be finite and in [{lo}, {hi}], got {v!r}")
+    return f
+
+
+def _checked_node(nid: str, d: dict[str, Any]) -> dict[str, Any]:
+    """The attributes of node ``nid`` read from a file, each checked for type and range."""
+    extra = set(d) - set(NODE_ATTRS)
+    if extra:
+        raise ValueError(f"node {nid!r} has unknown attribute(s) {sorted(extra)}")
+    missing = [k for k in (*_INT_ATTRS, "action", "strength") if k not in d]
+    if missing:
+        raise ValueError(f"node {nid!r} lacks attribute(s) {missing}")
+    at: dict[str, Any] = {k: _file_int(f"{k} of {nid!r}", d[k], lo=0) for k in _INT_ATTRS}
+    if _node_id((at["a"], at["b"])) != nid:
+        raise ValueError(f"node id {nid!r} does not match a={at['a']}, b={at['b']}")
+    count = at["count"]
+    if count < 1 or at["n_wait"] > count or at["n_delay"] > count:
+        raise ValueError(f"node {nid!r}: need count >= 1 and n_wait, n_delay <= count, got "
+                         f"count={count}, n_wait={at['n_wait']}, n_delay={at['n_delay']}")
+    action = d["action"]
+    if action not in (MOVE, WAIT):
+        raise ValueError(f"node {nid!r}: action must be 'move' or 'wait', got {action!r}")
+    if (action == WAIT) != (2 * at["n_wait"] > count):
+        raise ValueError(f"node {nid!r}: action {action!r} is not the majority of "
+                         f"{at['n_wait']} wait(s) in {count}")
+    at["action"] = action
+    for k in _FLOAT_ATTRS:
+        at[k] = _file_float(f"{k} of {nid!r}", d[k]) if k in d else None
+    moves = count - at["n_wait"]
+    if moves > 0:
+        for k in ("heading", "heading_r", "distance"):
+            if at[k] is None:
+                raise ValueError(f"node {nid!r} has {moves} move(s) but no {k}")
+    if at["heading"] is not None and not -math.pi < at["heading"] <= math.pi:
+        raise ValueError(f"heading of {nid!r} must lie in (-pi, pi], got {at['heading']}")
+    if at["heading_r"] is not None and not 0.0 <= at["heading_r"] <= 1.0:
+        raise ValueError(f"heading_r of {nid!r} must lie in [0, 1], got {at['heading_r']}")
+    if at["distance"] is not None and at["distance"] < 0:
+        raise ValueError(f"distance of {nid!r} must be >= 0, got {at['distance']}")
+    if (at["delay"] is None) != (at["n_delay"] == 0):
+        raise ValueError(f"node {nid!r}: a delay must be present exactly when n_delay > 0")
+    if at["delay"] is not None and at["delay"] < 0:
+        raise ValueError(f"delay of {nid!r} must be >= 0, got {at['delay']}")
+    if not 0.0 <= at["strength"] <= 1.0:
+        raise ValueError(f"strength of {nid!r} must lie in [0, 1], got {at['strength']}")
+    return at
 
 
 @dataclass(frozen=True)

@@ -50,7 +50,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
-from hippo._checks import check_finite, check_positive, check_range
+from hippo._checks import check_fields, check_finite, check_positive, check_range
 from hippo.cognitive_map.drives import Drives
 from hippo.cognitive_map.graph import Transition, TransitionGraph, TransitionIndex, as_transition
 
@@ -81,6 +81,7 @@ class PlannerParams:
     method: Method = "states"
 
     def __post_init__(self) -> None:
+        check_fields(self)
         _check_w(self.w)
         check_positive("PlannerParams.noise", self.noise, allow_zero=True)
         check_range("PlannerParams.exploration_threshold", self.exploration_threshold, 0.0, 1.0)

@@ -35,7 +35,8 @@ from typing import Any
 import numpy as np
 import scipy.linalg
 
-from hippo._checks import check_finite
+from hippo._checks import check_fields, check_finite
+from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo._threads import parallel_map
 
 SCORES = ("kurtosis", "sparseness", "slowness")
@@ -65,6 +66,7 @@ class ICAParams:
     workers: int | None = None
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if self.n_components is not None and int(self.n_components) < 1:
             raise ValueError(f"n_components (n_ica) must be >= 1, got {self.n_components}")
         if self.algorithm not in ("symmetric", "deflation"):
@@ -174,7 +176,7 @@ def score_outputs(S: np.ndarray, criterion: str) -> float:
     raise ValueError(f"unknown score {criterion!r}; choose from {SCORES}")
 
 
-class FastICA:
+class FastICA(ParamsEstimator):
     """FastICA, cube non-linearity: ``w⁺ = E{z (wᵀz)³} - 3 E{(wᵀz)²} w`` (SMC09 eq. 8-10).
 
     Fitted attributes: ``mean_`` (d,), ``whitening_`` (d, k) with ``z = (x - mean_) @
@@ -186,7 +188,7 @@ class FastICA:
     def __init__(self, params: ICAParams | None = None, **overrides: Any) -> None:
         self.params = replace(params or ICAParams(), **overrides)
 
-    def fit(self, X: np.ndarray) -> FastICA:
+    def fit(self, X: np.ndarray, y: None = None) -> FastICA:
         """Estimate the unmixing of ``X`` (T, d), rows are samples."""
         X = np.asarray(X)
         if X.ndim != 2:
@@ -258,14 +260,15 @@ class FastICA:
     def transform(self, X: np.ndarray) -> np.ndarray:
         """Independent components ``(T, k)`` of ``X`` ``(T, d)``."""
         if not hasattr(self, "components_"):
-            raise RuntimeError("FastICA is not fitted yet; call fit(X) first")
+            raise NotFittedError("FastICA is not fitted yet; call fit(X) first")
         X = np.asarray(X)
         if X.ndim != 2 or X.shape[1] != self.n_features_in_:
             raise ValueError(f"X must have shape (T, {self.n_features_in_}), got {X.shape}")
         X = check_finite("X", X)
         return (X - self.mean_) @ self.components_.T
 
-    def fit_transform(self, X: np.ndarray) -> np.ndarray:
+    def fit_transform(self, X: np.ndarray, y: None = None) -> np.ndarray:
+        """``fit(X)``, then the components of ``X`` (``y`` is ignored, as in scikit-learn)."""
         return self.fit(X).transform(X)
 
     def __repr__(self) -> str:

@@ -23,6 +23,16 @@ adds each finished chunk to the SFA moments (:class:`~hippo.perception.sfa.SFAMo
 costs little more than the harvest; :func:`fit_leak_sweep` harvests many leak configurations
 as one batch and fits them on parallel threads.
 
+Input policy: sensor readings are expected in ``input_range`` (default ``(0, 1)``, the scale of
+:class:`~hippo.sim.World`'s IR readings; ``None`` accepts any finite value). :meth:`RCSFAICA.fit`
+refuses a recording with readings outside it, with fewer than ``min_fit_ticks`` reservoir updates
+after the washout (default 100, 20 s at 0.2 s), or whose every sensor is constant (stuck): none
+can yield place cells. A fitted model meeting readings outside the range in :meth:`step` or
+:meth:`transform` follows ``out_of_range``: ``"error"`` (default) raises ``ValueError``,
+``"warn"`` clips them to the range and emits :class:`InputRangeWarning`, ``"clip"`` clips them
+silently. A reading is never extrapolated (a linear readout of readings ×1e6 would give
+activities of ±1e4). NaN and inf are always refused.
+
 Optional input down-sampling (``downsample > 1``, ICANN09: 50) uses a causal anti-aliasing
 FIR (:mod:`hippo.perception.resample`); the reservoir then ticks once per ``downsample`` inputs
 and outputs are held in between.
@@ -32,6 +42,7 @@ from __future__ import annotations
 
 import json
 import os
+import warnings
 from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import asdict, dataclass, fields, replace
@@ -41,16 +52,33 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite
+from hippo._checks import check_array, check_choice, check_fields, check_finite, check_int
+from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo._threads import n_workers, parallel_map, single_threaded_blas
 from hippo.io import CorruptFileError, load_npz, save_npz
 from hippo.perception.ica import FastICA, ICAParams
 from hippo.perception.resample import Decimator, hold
-from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
+from hippo.perception.reservoir import (
+    Reservoir,
+    ReservoirParams,
+    _check_device,
+    _leak_param,
+    _np_dtype,
+    expand_leak,
+)
 from hippo.perception.reservoir import _num_threads as _torch_threads
 from hippo.perception.sfa import SFA, SFAMoments, SFAParams, chunk_bounds
 
 FORMAT = "hippo.perception.RCSFAICA/1"
+
+
+_REQUIRED = ("format", "params", "sfa_mean", "sfa_scale", "sfa_W", "sfa_slowness", "ica_mean",
+             "ica_whitening", "ica_rotation", "output_std", "output_peak")
+
+
+class InputRangeWarning(RuntimeWarning):
+    """Readings outside the model's ``input_range`` were clipped (``out_of_range='warn'``)."""
+
 #: reservoir ticks per chunk when the harvest and the SFA moments run side by side
 _HARVEST_CHUNK = 2048
 #: leak configurations harvested together by ``fit_leak_sweep``
@@ -87,18 +115,33 @@ class RCSFAICAParams:
     seed: int = 0
     dtype: str = "float32"
     device: str = "cpu"
+    # input checks (see "Input policy" in the module docstring)
+    input_range: tuple[float, float] | None = (0.0, 1.0)
+    out_of_range: str = "error"
+    min_fit_ticks: int = 100
 
     def __post_init__(self) -> None:
-        if isinstance(self.leak, list):
-            object.__setattr__(self, "leak", tuple(self.leak))
-        if int(self.n_inputs) < 1:
-            raise ValueError(f"n_inputs must be >= 1, got {self.n_inputs}")
-        if int(self.downsample) < 1:
-            raise ValueError(f"downsample must be >= 1, got {self.downsample}")
-        if int(self.washout) < 0:
-            raise ValueError(f"washout must be >= 0, got {self.washout}")
-        if int(self.n_ica) > int(self.n_sfa):
+        object.__setattr__(self, "leak", _leak_param(self.leak))
+        if isinstance(self.input_range, list):
+            object.__setattr__(self, "input_range", tuple(self.input_range))
+        check_fields(self)
+        check_int("n_inputs", self.n_inputs, lo=1)
+        check_int("downsample", self.downsample, lo=1)
+        check_int("washout", self.washout, lo=0)
+        check_int("n_reservoir", self.n_reservoir, lo=1)
+        check_int("n_sfa", self.n_sfa, lo=1)
+        check_int("n_ica", self.n_ica, lo=1)
+        if self.n_ica > self.n_sfa:
             raise ValueError(f"n_ica={self.n_ica} exceeds n_sfa={self.n_sfa}")
+        check_int("min_fit_ticks", self.min_fit_ticks, lo=3)
+        if self.input_range is not None:
+            lo, hi = self.input_range
+            if not lo < hi:
+                raise ValueError(f"input_range must be (low, high) with low < high, got "
+                                 f"{self.input_range!r}")
+        check_choice("out_of_range", self.out_of_range, ("error", "warn", "clip"))
+        _np_dtype(self.dtype)
+        _check_device(self.device)
         # delegate the remaining checks to the layers' own parameter classes
         self.reservoir_params()
         self.sfa_params()
@@ -129,7 +172,7 @@ ICANN09 = RCSFAICAParams(n_inputs=17, downsample=50, n_reservoir=400, leak=0.6,
                          n_sfa=70, n_ica=70)
 
 
-class RCSFAICA:
+class RCSFAICA(ParamsEstimator):
     """Reservoir → linear SFA → FastICA place cells (SMC09 Fig. 1; ICANN09 Fig. 1).
 
     ``RCSFAICA(params, **overrides)`` stores ``params`` (a :class:`RCSFAICAParams`, default
@@ -161,18 +204,51 @@ class RCSFAICA:
         """ICANN09 settings (maze E1, 17 sensors): see :data:`ICANN09`."""
         return cls(ICANN09, **overrides)
 
-    def get_params(self) -> dict[str, Any]:
-        return asdict(self.params)
-
     # ------------------------------------------------------------------ input handling
-    def _check_U(self, U: Any) -> np.ndarray:
+    def _check_U(self, U: Any, *, fitting: bool = False) -> np.ndarray:
         U = np.asarray(U)
         n = self.params.n_inputs
         if U.ndim != 2 or U.shape[1] != n:
             raise ValueError(f"sensor sequence U must have shape (T, {n}), got {U.shape}")
-        if not np.issubdtype(U.dtype, np.number) or np.issubdtype(U.dtype, np.complexfloating):
+        if (not np.issubdtype(U.dtype, np.number) or np.issubdtype(U.dtype, np.complexfloating)
+                or U.dtype.kind == "b"):
             raise ValueError(f"sensor sequence U must be real numbers, got dtype {U.dtype}")
-        return check_finite("sensor sequence U", U)
+        U = check_finite("sensor sequence U", U, keep_float32=True)
+        rng = self.params.input_range
+        if rng is not None and U.size and (U.min() < rng[0] or U.max() > rng[1]):
+            msg = (f"sensor sequence U holds readings outside input_range [{rng[0]:g}, "
+                   f"{rng[1]:g}] (min {U.min():g}, max {U.max():g})")
+            if fitting:
+                raise ValueError(msg + "; place cells are learned from sensor readings scaled to "
+                                 "input_range: rescale U, or set input_range to its true range")
+            U = self._out_of_range(U, msg)
+        return U
+
+    def _out_of_range(self, u: np.ndarray, msg: str) -> np.ndarray:
+        """Apply the ``out_of_range`` policy to inputs outside ``input_range``."""
+        policy = self.params.out_of_range
+        if policy == "error":
+            raise ValueError(msg + "; the model was fitted on readings in that range and would "
+                             "extrapolate (set out_of_range='clip' or 'warn' to clip instead)")
+        if policy == "warn":
+            warnings.warn(msg + "; clipped to the range", InputRangeWarning, stacklevel=3)
+        lo, hi = self.params.input_range  # type: ignore[misc]
+        return np.clip(u, lo, hi)
+
+    def _check_trainable(self, U: np.ndarray) -> None:
+        """Refuse recordings that cannot yield place cells: too short, or no sensor varies."""
+        p = self.params
+        n_updates = -(-U.shape[0] // p.downsample) - p.washout
+        if n_updates < p.min_fit_ticks:
+            raise ValueError(
+                f"U has {U.shape[0]} ticks ({n_updates} reservoir updates after a washout of "
+                f"{p.washout} and down-sampling by {p.downsample}); fitting needs at least "
+                f"min_fit_ticks={p.min_fit_ticks} updates of exploration")
+        spread = U.max(axis=0) - U.min(axis=0)
+        if not (spread > 1e-9).any():
+            raise ValueError(
+                f"every sensor in U is constant (values {np.unique(U[0]).tolist()[:4]}): stuck "
+                "or disconnected sensors carry no information about place")
 
     def features(self, U: np.ndarray, *, downsampled: bool = False) -> np.ndarray:
         """SFA input ``[u(t); x(t+1)]`` for a recording ``U`` (at the down-sampled rate),
@@ -194,14 +270,11 @@ class RCSFAICA:
         return Reservoir(p.reservoir_params(), dtype=p.dtype, device=p.device)
 
     # ------------------------------------------------------------------ learning
-    def fit(self, U: np.ndarray) -> RCSFAICA:
+    def fit(self, U: np.ndarray, y: None = None) -> RCSFAICA:
         """Learn SFA then ICA on a recording ``U`` (T, n_inputs) of sensor values."""
-        U = self._check_U(U)
+        U = self._check_U(U, fitting=True)
+        self._check_trainable(U)
         p = self.params
-        need = (p.washout + 3) * p.downsample
-        if U.shape[0] < need:
-            raise ValueError(f"U has {U.shape[0]} ticks; at least {need} are needed "
-                             f"(washout {p.washout}, downsample {p.downsample})")
         self.reservoir_ = self._build_reservoir()
         self.n_features_in_ = p.n_inputs
         Ud = self._decimator().offline(U)
@@ -304,7 +377,8 @@ class RCSFAICA:
         dec = self._decimator()
         return dec.sample_ticks(T), float(dec.delay) if dec.factor > 1 else 0.0
 
-    def fit_transform(self, U: np.ndarray, **kw: Any):
+    def fit_transform(self, U: np.ndarray, y: None = None, **kw: Any):
+        """``fit(U)``, then ``transform(U, **kw)`` (``y`` is ignored, as in scikit-learn)."""
         return self.fit(U).transform(U, **kw)
 
     # ------------------------------------------------------------------ online
@@ -321,11 +395,20 @@ class RCSFAICA:
         activities (n_ica,) (a new array)."""
         self._check_fitted()
         n = self.params.n_inputs
-        u = np.asarray(u, dtype=float)
+        try:
+            u = np.asarray(u, dtype=float)
+        except (TypeError, ValueError):
+            raise ValueError(f"sensor vector u must be {n} real numbers, got {u!r}") from None
         if u.shape != (n,):
             raise ValueError(f"sensor vector u must have shape ({n},), got {u.shape}")
-        if not np.isfinite(u).all():
-            raise ValueError("sensor vector u contains NaN or inf")
+        # one cheap check per tick: NaN fails both comparisons
+        rng = self.params.input_range
+        lo, hi = (-np.inf, np.inf) if rng is None else rng
+        if not (u.min() >= lo and u.max() <= hi):
+            if not np.isfinite(u).all():
+                raise ValueError(f"sensor vector u contains NaN or inf: {u}")
+            u = self._out_of_range(u, f"sensor vector u = {u} lies outside input_range "
+                                      f"[{lo:g}, {hi:g}]")
         if self.params.downsample > 1:
             ud = self._dec.push(u)
             if ud is None:
@@ -367,62 +450,111 @@ class RCSFAICA:
 
     @classmethod
     def load(cls, path: str | os.PathLike) -> RCSFAICA:
-        """Read a model written by :meth:`save`; a damaged file raises ``CorruptFileError``
-        (a ``ValueError``) naming the problem."""
-        req = ("format", "params", "sfa_mean", "sfa_scale", "sfa_W", "sfa_slowness",
-               "ica_mean", "ica_whitening", "ica_rotation", "output_std", "output_peak")
-        a = load_npz(path, required=req)
-        if str(a["format"]) != FORMAT:
-            raise CorruptFileError(f"{path} is not an RCSFAICA model (format {a['format']!s})")
+        """Read a model written by :meth:`save`.
+
+        Nothing in the file is trusted: the format tag, the parameters (type- and range-checked
+        like the constructor's), and every array's dtype, shape (consistent with the
+        parameters and with each other) and finiteness, the reservoir's leak and spectral radius
+        against its parameters, scales and standard deviations > 0. A damaged file raises
+        :class:`~hippo.io.CorruptFileError` (a ``ValueError``) naming the problem; nothing is
+        half-loaded (the model is built only once every check passed).
+        """
+        a = load_npz(path, required=_REQUIRED)
+        try:
+            return cls._from_arrays(a)
+        except CorruptFileError as exc:
+            raise CorruptFileError(f"{path}: {exc}") from exc
+        except (ValueError, TypeError, KeyError, IndexError, OverflowError) as exc:
+            raise CorruptFileError(f"{path}: inconsistent model file ({exc})") from exc
+
+    @classmethod
+    def _from_arrays(cls, a: dict[str, np.ndarray]) -> RCSFAICA:
+        fmt = a["format"]
+        if fmt.dtype.kind != "U" or fmt.shape != () or str(fmt) != FORMAT:
+            raise CorruptFileError(f"not an RCSFAICA model (format {str(fmt)[:80]!r})")
+        if a["params"].dtype.kind != "U" or a["params"].shape != ():
+            raise CorruptFileError("the parameters are not a JSON string")
         try:
             raw = json.loads(str(a["params"]))
-            known = {f.name for f in fields(RCSFAICAParams)}
-            if isinstance(raw.get("leak"), list):
-                raw["leak"] = tuple(raw["leak"])
-            params = RCSFAICAParams(**{k: v for k, v in raw.items() if k in known})
-        except (json.JSONDecodeError, TypeError, ValueError) as exc:
-            raise CorruptFileError(f"{path} has unreadable parameters ({exc})") from exc
-        self = cls(params)
+        except json.JSONDecodeError as exc:
+            raise CorruptFileError(f"unreadable parameters ({exc})") from exc
+        if not isinstance(raw, dict):
+            raise CorruptFileError(f"the parameters are not a JSON object: {str(raw)[:80]}")
+        known = {f.name for f in fields(RCSFAICAParams)}
+        if isinstance(raw.get("input_range"), list):
+            raw["input_range"] = tuple(raw["input_range"])
         try:
-            if params.use_reservoir:
-                for k in ("W_in", "W_res", "leak"):
-                    if k not in a:
-                        raise CorruptFileError(f"{path} lacks required array(s): {k}")
-                self.reservoir_ = Reservoir.from_weights(
-                    a["W_in"], a["W_res"], a["leak"], spectral_radius=params.spectral_radius,
-                    dtype=params.dtype, device=params.device)
-            else:
-                self.reservoir_ = None
-            sfa = SFA(params.sfa_params())
-            sfa.mean_, sfa.scale_, sfa.W_ = a["sfa_mean"], a["sfa_scale"], a["sfa_W"]
-            sfa.slowness_ = a["sfa_slowness"]
-            sfa.cutoff_ = float(a.get("sfa_cutoff", np.nan))
-            sfa.n_whitened_ = int(a.get("sfa_n_whitened", -1))
-            if params.sfa_expansion == "quadratic":
-                sfa.pre_mean_, sfa.pre_scale_ = a["sfa_pre_mean"], a["sfa_pre_scale"]
-                sfa.n_features_in_ = sfa.pre_mean_.shape[0]
-            else:
-                sfa.n_features_in_ = sfa.mean_.shape[0]
-            ica = FastICA(params.ica_params())
-            ica.mean_, ica.whitening_, ica.rotation_ = (a["ica_mean"], a["ica_whitening"],
-                                                        a["ica_rotation"])
-            ica.components_ = ica.rotation_ @ ica.whitening_.T
-            ica.n_features_in_ = ica.mean_.shape[0]
-            ica.output_std_ = a["output_std"]
-            n_feat = params.n_inputs + (params.n_reservoir if params.use_reservoir else 0)
-            if (sfa.n_features_in_ != n_feat or sfa.W_.shape[1] != params.n_sfa
-                    or ica.components_.shape != (params.n_ica, params.n_sfa)):
-                raise CorruptFileError(f"{path}: array shapes do not match its parameters")
-        except KeyError as exc:
-            raise CorruptFileError(f"{path} lacks required array {exc}") from exc
-        except ValueError as exc:
-            if isinstance(exc, CorruptFileError):
-                raise
-            raise CorruptFileError(f"{path} holds inconsistent arrays ({exc})") from exc
+            params = RCSFAICAParams(**{k: v for k, v in raw.items() if k in known})
+        except (TypeError, ValueError) as exc:
+            raise CorruptFileError(f"bad parameters ({exc})") from exc
+        p = params
+
+        def arr(key: str, shape: tuple[int | None, ...], dtype: str = "float") -> np.ndarray:
+            if key not in a:
+                raise CorruptFileError(f"lacks required array {key!r}")
+            try:
+                return check_array(key, a[key], shape=shape, dtype=dtype)
+            except ValueError as exc:
+                raise CorruptFileError(str(exc)) from None
+
+        def positive(key: str, v: np.ndarray) -> np.ndarray:
+            if not (v > 0).all():
+                raise CorruptFileError(f"{key} must be > 0 everywhere, got min {v.min():g}")
+            return v
+
+        n_u, n_sfa, n_ica = p.n_inputs, p.n_sfa, p.n_ica
+        reservoir = None
+        if p.use_reservoir:
+            N = p.n_reservoir
+            W_in = arr("W_in", (N, n_u))
+            W_res = arr("W_res", (N, N))
+            leak = arr("leak", (N,))
+            if not np.array_equal(leak, expand_leak(p.leak, N)):
+                raise CorruptFileError(f"leak does not match the parameters' leak {p.leak}")
+            radius = float(np.max(np.abs(np.linalg.eigvals(W_res)))) if N else 0.0
+            if not abs(radius - p.spectral_radius) <= 1e-6 * max(1.0, p.spectral_radius):
+                raise CorruptFileError(f"W_res has spectral radius {radius:.6g}, its parameters "
+                                       f"say {p.spectral_radius}")
+            reservoir = Reservoir.from_weights(W_in, W_res, leak,
+                                               spectral_radius=p.spectral_radius,
+                                               dtype=p.dtype, device=p.device)
+        d_in = n_u + (p.n_reservoir if p.use_reservoir else 0)
+        sfa = SFA(p.sfa_params())
+        if p.sfa_expansion == "quadratic":
+            sfa.pre_mean_ = arr("sfa_pre_mean", (d_in,))
+            sfa.pre_scale_ = positive("sfa_pre_scale", arr("sfa_pre_scale", (d_in,)))
+            d = d_in + d_in * (d_in + 1) // 2
+        else:
+            d = d_in
+        sfa.n_features_in_ = d_in
+        sfa.mean_ = arr("sfa_mean", (d,))
+        sfa.scale_ = positive("sfa_scale", arr("sfa_scale", (d,)))
+        sfa.W_ = arr("sfa_W", (d, n_sfa))
+        sfa.slowness_ = arr("sfa_slowness", (n_sfa,))
+        cutoff = arr("sfa_cutoff", ()) if "sfa_cutoff" in a else np.array(np.nan)
+        sfa.cutoff_ = float(cutoff)
+        if "sfa_n_whitened" in a:
+            nw = int(arr("sfa_n_whitened", (), dtype="int"))
+            if not n_sfa <= nw <= d:
+                raise CorruptFileError(f"sfa_n_whitened={nw} must lie in [{n_sfa}, {d}]")
+            sfa.n_whitened_ = nw
+        else:
+            sfa.n_whitened_ = -1
+        ica = FastICA(p.ica_params())
+        ica.mean_ = arr("ica_mean", (n_sfa,))
+        ica.whitening_ = arr("ica_whitening", (n_sfa, n_ica))
+        ica.rotation_ = arr("ica_rotation", (n_ica, n_ica))
+        ica.components_ = ica.rotation_ @ ica.whitening_.T
+        ica.n_features_in_ = n_sfa
+        output_std = positive("output_std", arr("output_std", (n_ica,)))
+        output_peak = arr("output_peak", (n_ica,))
+        ica.output_std_ = output_std
+        self = cls(params)
+        self.reservoir_ = reservoir
         self.sfa_, self.ica_ = sfa, ica
         self.sfa_slowness_ = sfa.slowness_.copy()
-        self.n_features_in_ = params.n_inputs
-        self.output_std_, self.output_peak_ = a["output_std"], a["output_peak"]
+        self.n_features_in_ = n_u
+        self.output_std_, self.output_peak_ = output_std, output_peak
         self._compile()
         self.reset_state()
         return self
@@ -430,7 +562,7 @@ class RCSFAICA:
     # ------------------------------------------------------------------ misc
     def _check_fitted(self) -> None:
         if not hasattr(self, "ica_"):
-            raise RuntimeError("RCSFAICA is not fitted yet; call fit(U) first")
+            raise NotFittedError("RCSFAICA is not fitted yet; call fit(U) first")
 
     def __repr__(self) -> str:
         p = self.params

@@ -19,14 +19,18 @@ active ICA unit.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from scipy.cluster.vq import kmeans2
 
-from hippo._checks import check_finite, check_positive
+from hippo._checks import check_array, check_fields, check_finite, check_positive
+from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo.io import CorruptFileError, load_npz, save_npz
+
+PROTOTYPES_FORMAT = "hippo.PlacePrototypes/1"
 
 
 @dataclass(frozen=True)
@@ -42,6 +46,7 @@ class PrototypeParams:
     seed: int = 0
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if int(self.n_prototypes) < 1:
             raise ValueError(f"n_prototypes must be >= 1, got {self.n_prototypes}")
         if not 0.0 <= self.recruit_threshold < 1.0:
@@ -51,17 +56,15 @@ class PrototypeParams:
             raise ValueError("max_prototypes must be >= n_prototypes")
 
 
-class PlacePrototypes:
+class PlacePrototypes(ParamsEstimator):
     """Radial-basis place cells over a population code (see the module docstring)."""
 
-    def __init__(self, params: PrototypeParams | None = None) -> None:
-        self.params = params or PrototypeParams()
-        self.centres_: np.ndarray | None = None
-        self.sigma_: float | None = None
+    def __init__(self, params: PrototypeParams | None = None, **overrides: Any) -> None:
+        self.params = replace(params or PrototypeParams(), **overrides)
 
-    def fit(self, Y: np.ndarray) -> PlacePrototypes:
+    def fit(self, Y: np.ndarray, y: None = None) -> PlacePrototypes:
         """Fit the prototypes to training outputs ``Y`` (T, d)."""
-        Y = check_finite("Y", Y)
+        Y = _real("Y", Y)
         if Y.ndim != 2:
             raise ValueError(f"Y must have shape (T, d), got {Y.shape}")
         k = int(self.params.n_prototypes)
@@ -72,9 +75,14 @@ class PlacePrototypes:
         near = np.argmin(_sqdist(Y, centres), axis=1)
         centres = centres[np.unique(near)]
         d = np.sqrt(np.min(_sqdist(Y, centres), axis=1))
+        self.n_features_in_ = Y.shape[1]
         self.centres_ = centres
         self.sigma_ = float(max(np.median(d), 1e-6))
         return self
+
+    def fit_transform(self, Y: np.ndarray, y: None = None) -> np.ndarray:
+        """``fit(Y)``, then the activities of ``Y``."""
+        return self.fit(Y).transform(Y)
 
     @property
     def n_units(self) -> int:
@@ -84,11 +92,21 @@ class PlacePrototypes:
     def transform(self, Y: np.ndarray) -> np.ndarray:
         """Activities (T, n_prototypes) of a sequence of outputs (no recruitment)."""
         self._check_fitted()
-        Y = check_finite("Y", np.atleast_2d(Y))
+        Y = _real("Y", Y)
+        Y = Y[None] if Y.ndim == 1 else Y
+        d = self.centres_.shape[1]  # type: ignore[union-attr]
+        if Y.ndim != 2 or Y.shape[1] != d:
+            raise ValueError(f"place-cell outputs must have shape ({d},) or (T, {d}) (the "
+                             f"dimension the prototypes were fitted on), got "
+                             f"{np.shape(Y) if np.ndim(Y) != 2 else Y.shape}")
         return np.exp(-_sqdist(Y, self.centres_) / (2 * self.sigma_**2))  # type: ignore[operator]
 
     def step(self, y: np.ndarray) -> np.ndarray:
         """Activities for one output vector; recruits a prototype on a novel pattern."""
+        self._check_fitted()
+        d = self.centres_.shape[1]  # type: ignore[union-attr]
+        if np.shape(y) != (d,):
+            raise ValueError(f"place-cell output y must have shape ({d},), got {np.shape(y)}")
         a = self.transform(y)[0]
         p = self.params
         if (p.recruit_threshold > 0 and a.max() < p.recruit_threshold
@@ -99,7 +117,7 @@ class PlacePrototypes:
 
     def save(self, path: str | os.PathLike) -> Path:
         self._check_fitted()
-        return save_npz(path, {"format": np.array("hippo.PlacePrototypes/1"),
+        return save_npz(path, {"format": np.array(PROTOTYPES_FORMAT),
                                "centres": self.centres_, "sigma": np.array(self.sigma_),
                                "n_prototypes": np.array(self.params.n_prototypes),
                                "recruit_threshold": np.array(self.params.recruit_threshold),
@@ -108,18 +126,42 @@ class PlacePrototypes:
 
     @classmethod
     def load(cls, path: str | os.PathLike) -> PlacePrototypes:
-        d = load_npz(path, required=("format", "centres", "sigma"))
-        if str(d["format"]) != "hippo.PlacePrototypes/1":
+        """Read prototypes written by :meth:`save`; every array is checked (format tag, dtypes,
+        shapes, finite centres, sigma > 0, parameters as at construction) and a damaged file
+        raises :class:`~hippo.io.CorruptFileError` naming the problem."""
+        d = load_npz(path, required=("format", "centres", "sigma", "n_prototypes",
+                                     "recruit_threshold", "max_prototypes", "seed"))
+        fmt = d["format"]
+        if fmt.dtype.kind != "U" or fmt.shape != () or str(fmt) != PROTOTYPES_FORMAT:
             raise CorruptFileError(f"{path} is not a saved PlacePrototypes")
-        obj = cls(PrototypeParams(int(d["n_prototypes"]), float(d["recruit_threshold"]),
-                                  int(d["max_prototypes"]), int(d["seed"])))
-        obj.centres_ = check_finite("centres", d["centres"])
-        obj.sigma_ = check_positive("sigma", float(d["sigma"]))
+        try:
+            params = PrototypeParams(
+                int(check_array("n_prototypes", d["n_prototypes"], shape=(), dtype="int")),
+                float(check_array("recruit_threshold", d["recruit_threshold"], shape=())),
+                int(check_array("max_prototypes", d["max_prototypes"], shape=(), dtype="int")),
+                int(check_array("seed", d["seed"], shape=(), dtype="int")))
+            centres = check_array("centres", d["centres"], shape=(None, None))
+            sigma = check_positive("sigma", float(check_array("sigma", d["sigma"], shape=())))
+            if not 1 <= len(centres) <= params.max_prototypes or centres.shape[1] < 1:
+                raise ValueError(f"centres has shape {centres.shape}: need 1 to max_prototypes="
+                                 f"{params.max_prototypes} rows of >= 1 values")
+        except ValueError as exc:
+            raise CorruptFileError(f"{path}: {exc}") from exc
+        obj = cls(params)
+        obj.centres_, obj.sigma_ = centres, sigma
         return obj
 
     def _check_fitted(self) -> None:
-        if self.centres_ is None:
-            raise RuntimeError("PlacePrototypes is not fitted; call fit() first")
+        if getattr(self, "centres_", None) is None:
+            raise NotFittedError("PlacePrototypes is not fitted; call fit() first")
+
+
+def _real(name: str, Y: object) -> np.ndarray:
+    """``Y`` as a finite float array; complex values are refused, not cast."""
+    arr = np.asarray(Y)
+    if np.iscomplexobj(arr):
+        raise ValueError(f"{name} must be real numbers, got dtype {arr.dtype}")
+    return check_finite(name, arr)
 
 
 def _sqdist(Y: np.ndarray, C: np.ndarray) -> np.ndarray:

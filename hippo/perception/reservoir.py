@@ -37,6 +37,7 @@ paired with ``U[t]`` to form the SFA input ``[u(t); x(t+1)]``.
 
 from __future__ import annotations
 
+import numbers
 import sys
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
@@ -45,7 +46,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite, check_positive, check_range
+from hippo._checks import check_fields, check_finite, check_int, check_positive, check_range
 from hippo._threads import blas_threads
 
 LeakSpec = float | Sequence[float] | np.ndarray
@@ -67,10 +68,10 @@ class ReservoirParams:
     seed: int = 0
 
     def __post_init__(self) -> None:
-        if int(self.n_inputs) < 1:
-            raise ValueError(f"n_inputs must be >= 1, got {self.n_inputs}")
-        if int(self.n_neurons) < 1:
-            raise ValueError(f"n_neurons must be >= 1, got {self.n_neurons}")
+        object.__setattr__(self, "leak", _leak_param(self.leak))
+        check_fields(self)
+        check_int("ReservoirParams.n_inputs", self.n_inputs, lo=1)
+        check_int("ReservoirParams.n_neurons", self.n_neurons, lo=1)
         check_positive("spectral_radius", self.spectral_radius)
         check_positive("input_weight", self.input_weight, allow_zero=True)
         check_range("input_prob", self.input_prob, 0.0, 0.5)
@@ -87,6 +88,14 @@ class ReservoirParams:
         """ICANN09: 17 inputs, 400 neurons, leak 0.6, ρ(W)=0.9, W_in ±0.2 with p=0.15."""
         return cls(**{**dict(n_inputs=17, n_neurons=400, spectral_radius=0.9, leak=0.6,
                              input_weight=0.2, input_prob=0.15), **overrides})
+
+
+def _leak_param(leak: Any) -> Any:
+    """A leak given as a list or a 1-D array becomes a tuple of floats (hashable, frozen)."""
+    if isinstance(leak, list | np.ndarray) and np.ndim(leak) == 1:
+        return tuple(float(v) if isinstance(v, numbers.Real) and not isinstance(v, bool)
+                     else v for v in leak)
+    return leak
 
 
 def expand_leak(leak: LeakSpec, n_neurons: int) -> np.ndarray:

@@ -39,7 +39,8 @@ from typing import Any
 import numpy as np
 import scipy.linalg
 
-from hippo._checks import check_finite
+from hippo._checks import check_fields, check_finite
+from hippo._estimator import NotFittedError, ParamsEstimator
 
 _AUTO_CANDIDATES = tuple(10.0 ** -k for k in range(3, 13))
 
@@ -55,6 +56,7 @@ class SFAParams:
     expansion: str = "linear"
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if int(self.n_components) < 1:
             raise ValueError(f"n_components (n_sfa) must be >= 1, got {self.n_components}")
         if self.expansion not in ("linear", "quadratic"):
@@ -185,7 +187,7 @@ def _slow(S: np.ndarray, A: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]
     return lam, S @ V
 
 
-class SFA:
+class SFA(ParamsEstimator):
     """Linear (or quadratic) SFA: ``y = Wᵀ (x - μ)/σ`` with ``A W = B W Λ`` (SMC09 eq. 6-7).
 
     Fitted attributes: ``mean_``, ``scale_`` (z-scoring of the expanded input), ``W_``
@@ -213,7 +215,7 @@ class SFA:
         return check_finite(name, X, keep_float32=True)
 
     # ------------------------------------------------------------------ fit / transform
-    def fit(self, X: np.ndarray) -> SFA:
+    def fit(self, X: np.ndarray, y: None = None) -> SFA:
         """Learn the slow features of ``X`` (T, d), rows in time order."""
         X = self._check_X(X)
         self._fit_moments(self.accumulate(X), X)
@@ -332,7 +334,7 @@ class SFA:
                              f"{self.n_features_in_}")
         return self._project(X)
 
-    def fit_transform(self, X: np.ndarray) -> np.ndarray:
+    def fit_transform(self, X: np.ndarray, y: None = None) -> np.ndarray:
         """``fit(X)``, then the slow features of ``X`` (computed once)."""
         X = self._check_X(X)
         return self._fit_moments(self.accumulate(X), X)
@@ -347,7 +349,7 @@ class SFA:
 
     def _check_fitted(self) -> None:
         if not hasattr(self, "W_"):
-            raise RuntimeError("SFA is not fitted yet; call fit(X) first")
+            raise NotFittedError("SFA is not fitted yet; call fit(X) first")
 
     def __repr__(self) -> str:
         p = self.params

@@ -59,7 +59,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from hippo._checks import check_finite, check_positive, check_range
+from hippo._checks import check_fields, check_finite, check_positive, check_range
 
 __all__ = ["EVENT_KINDS", "StateEvent", "StateKey", "StateLayer", "StateLayerParams"]
 
@@ -122,6 +122,7 @@ class StateLayerParams:
     context_time: float = 0.0
 
     def __post_init__(self) -> None:
+        check_fields(self)
         check_range("margin", self.margin, 0.0, 1.0)
         check_positive("hold_time", self.hold_time, allow_zero=True)
         if self.normalize not in ("pooled", "unit", "fixed"):

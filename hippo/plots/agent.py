@@ -11,6 +11,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
+from hippo.io import save_figure
 from hippo.plots.cognitive_map import plot_cognitive_map
 from hippo.plots.sim import draw_arena
 
@@ -104,7 +105,7 @@ def plot_place_preference(out: Path, arena: Arena, agent: Agent,
         ("trajectories.png", plot_trials(arena, arrays, 2, "rewarded trials: paths to the goal")),
         ("waits.png", plot_wait_profiles(arrays, trials, delay)),
     ):
-        fig.savefig(out / name, dpi=110)
+        save_figure(fig, out / name, dpi=110)
         plt.close(fig)
         paths.append(out / name)
     return paths
@@ -145,7 +146,7 @@ def plot_patrol(out: Path, arena: Arena, agent: Agent, arrays: Mapping[str, np.n
     paths = []
     for name, fig in (("map.png", plot_map(arena, agent, arrays)),
                       ("trajectories.png", fig_b), ("waits_table.png", plot_waits_table(rows))):
-        fig.savefig(out / name, dpi=110)
+        save_figure(fig, out / name, dpi=110)
         plt.close(fig)
         paths.append(out / name)
     return paths

@@ -9,13 +9,15 @@ from typing import Any
 
 import numpy as np
 
-from hippo.io import save_json
+from hippo.io import clean_stale_temps, save_json
 
 
 def prepare_out(out: str | Path) -> Path:
-    """Create the output folder and return it as a Path."""
+    """Create the output folder and return it as a Path; temporary files that a run killed
+    mid-write left in it are removed (:func:`hippo.io.clean_stale_temps`)."""
     path = Path(out)
     path.mkdir(parents=True, exist_ok=True)
+    clean_stale_temps(path)
     return path
 
 

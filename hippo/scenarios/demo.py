@@ -7,6 +7,7 @@ import time
 
 import numpy as np
 
+from hippo.io import save_figure
 from hippo.plots.sim import plot_sensor_strip, plot_trajectory
 from hippo.scenarios._common import prepare_out, write_metrics
 from hippo.sim import arenas
@@ -29,8 +30,8 @@ def run(args: argparse.Namespace) -> dict:
     wall = time.perf_counter() - t0
     rec.save(out / "run.npz")
     fig = plot_trajectory(arena, rec)
-    fig.savefig(out / "trajectory.png", dpi=120)
-    plot_sensor_strip(rec, 0, min(len(rec), 1500)).savefig(out / "sensors.png", dpi=120)
+    save_figure(fig, out / "trajectory.png", dpi=120)
+    save_figure(plot_sensor_strip(rec, 0, min(len(rec), 1500)), out / "sensors.png", dpi=120)
     visited = {name: float(np.mean(rec.region == i)) for i, name in enumerate(rec.region_names)}
     metrics = {
         "arena": arena.name, "ticks": ticks, "seed": args.seed, "rho": args.rho,

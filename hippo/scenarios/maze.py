@@ -45,6 +45,7 @@ from typing import Any
 
 import numpy as np
 
+from hippo.io import save_figure, save_npz
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
 from hippo.progress import Progress
@@ -219,7 +220,7 @@ def run(args: argparse.Namespace) -> dict:
                   Ysfa=k["_Ysd"])
     if "no_reservoir_quadratic" in keep:
         arrays["Y_ablation"] = keep["no_reservoir_quadratic"]["_Yd"]
-    np.savez_compressed(out / "run.npz", **arrays)
+    save_npz(out / "run.npz", arrays)
     if args.figures:
         _figures(out, arena, rec, keep, args.threshold, n_loc)
     write_metrics(out, metrics)
@@ -260,5 +261,5 @@ def _figures(out, arena, rec, keep, threshold: float, n_loc: int) -> None:
                 arena, xy[te], lab, k["_Ysd"][te], [0, min(11, n_sfa - 1), min(23, n_sfa - 1)],
                 t=k["_aligned"][te])
         for fname, fig in figs.items():
-            fig.savefig(out / fname, dpi=110)
+            save_figure(fig, out / fname, dpi=110)
             plt.close(fig)

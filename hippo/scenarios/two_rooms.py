@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from hippo.io import save_figure, save_npz
 from hippo.perception import RCSFAICA, ICAConvergenceWarning, fit_leak_sweep
 from hippo.perception import metrics as M
 from hippo.progress import Progress
@@ -266,12 +267,12 @@ def run(args: argparse.Namespace) -> dict:
         metrics["leak_sweep_meeting_targets"] = [r["leak"] for r in sweep["rows"]
                                                  if r["meets_targets"]]
         metrics["timing_s"]["leak_sweep"] = sweep["seconds"]
-    np.savez_compressed(
-        out / "run.npz", t=rec.t, x=rec.x, y=rec.y, label=rec.label, region=rec.region,
+    save_npz(out / "run.npz", dict(
+        t=rec.t, x=rec.x, y=rec.y, label=rec.label, region=rec.region,
         sensors=U, n_train=n_train, Y=keep["paper"]["Y"], Ysfa=keep["paper"]["Ysfa"],
         Y_kid=keep["paper"].get("Y_kid", np.zeros(0)), x_kid=rec_kid.x, y_kid=rec_kid.y,
         label_kid=rec_kid.label, kidnap_ticks=np.array(events),
-        Y_corridor_leaks=keep["corridor"]["Y"])
+        Y_corridor_leaks=keep["corridor"]["Y"]))
     if args.figures:
         _figures(out, arena, rec, rec_kid, n_train, events, keep, configs["paper"])
         if sweep is not None:
@@ -348,7 +349,7 @@ def _sweep_figure(out, rows: list[dict[str, Any]]) -> None:
                  f" and recovery <= {TARGETS['kidnap_recovery_ticks']} ticks); SMC09: 0.05/0.15",
                  fontsize=10)
     fig.tight_layout()
-    fig.savefig(out / "leak_sweep.png", dpi=110)
+    save_figure(fig, out / "leak_sweep.png", dpi=110)
     plt.close(fig)
 
 
@@ -388,5 +389,5 @@ def _figures(out, arena, rec, rec_kid, n_train, events, keep, leak) -> None:
               f"{c['corridor_cell_test_balanced_accuracy']:.3f}",
         truth=_room_masks(rec)["corridor"][te], truth_label="in corridor")
     for name, fig in figs.items():
-        fig.savefig(out / name, dpi=110)
+        save_figure(fig, out / name, dpi=110)
         plt.close(fig)

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hippo._checks import check_range
+from hippo._checks import check_fields, check_range
 from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
 from hippo.sim.world import Observation, wrap_angle
 
@@ -69,6 +69,7 @@ class WallFollowerParams:
     speed_drift: float = 0.15     #: relative sd of the speed random walk per tick
 
     def __post_init__(self) -> None:
+        check_fields(self)
         check_range("rho", self.rho, 0.0, 1.0)
         if not 0 < self.speed_min <= self.speed_max:
             raise ValueError("WallFollowerParams needs 0 < speed_min <= speed_max")

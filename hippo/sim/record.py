@@ -14,7 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from hippo.io import CorruptFileError, load_npz, save_npz
+from hippo._checks import check_array, check_positive
+from hippo.io import CorruptFileError, load_npz, save_figure, save_npz
 from hippo.progress import Progress
 from hippo.sim import arenas as arena_registry
 from hippo.sim.arena import Arena
@@ -69,28 +70,72 @@ class Recording:
         """Write to ``.npz`` atomically (no pickle)."""
         arrays = {f.name: getattr(self, f.name) for f in fields(self)}
         arrays["region_names"] = np.array(self.region_names, dtype=str)
-        arrays["format"] = np.array("hippo.Recording/1")
+        arrays["format"] = np.array(RECORDING_FORMAT)
         return save_npz(path, arrays)
 
     @classmethod
     def load(cls, path: str | Path) -> Recording:
-        """Read a recording written by :meth:`save`; a corrupt file raises a clear error."""
+        """Read a recording written by :meth:`save`. Every array is checked (dtype, shape,
+        length T, finiteness, sensors in [0, 1], time increasing, ``dt > 0``, region indices
+        within ``region_names``); a damaged file raises :class:`~hippo.io.CorruptFileError`."""
         names = [f.name for f in fields(cls)]
-        data = load_npz(path, required=names)
-        if str(data.get("format", "")) != "hippo.Recording/1":
+        data = load_npz(path, required=[*names, "format"])
+        fmt = data["format"]
+        if fmt.dtype.kind != "U" or fmt.shape != () or str(fmt) != RECORDING_FORMAT:
             raise CorruptFileError(f"{path} is not a hippo recording")
-        kw = {n: data[n] for n in names}
-        for k in ("arena", "sensor_model"):
-            kw[k] = str(kw[k])
-        kw["dt"], kw["seed"] = float(kw["dt"]), int(kw["seed"])
-        kw["region_names"] = [str(s) for s in kw["region_names"]]
-        rec = cls(**kw)
-        n = len(rec.t)
-        bad = [k for k in ("sensors", "x", "y", "heading", "speed", "floor", "label", "region")
-               if len(kw[k]) != n]
-        if bad:
-            raise CorruptFileError(f"{path}: arrays {bad} do not have the {n} ticks of 't'")
-        return rec
+        try:
+            kw = _checked_fields(data)
+        except ValueError as exc:
+            raise CorruptFileError(f"{path}: {exc}") from exc
+        return cls(**kw)
+
+
+RECORDING_FORMAT = "hippo.Recording/1"
+
+
+def _text(name: str, v: np.ndarray) -> str:
+    if v.dtype.kind != "U" or v.shape != ():
+        raise ValueError(f"{name} must be a text scalar, got dtype {v.dtype} shape {v.shape}")
+    return str(v)
+
+
+def _checked_fields(data: dict[str, np.ndarray]) -> dict[str, object]:
+    """The fields of a saved recording, each checked for dtype, shape and range."""
+    kw: dict[str, object] = {"arena": _text("arena", data["arena"]),
+                             "sensor_model": _text("sensor_model", data["sensor_model"])}
+    kw["dt"] = check_positive("dt", float(check_array("dt", data["dt"], shape=())))
+    kw["seed"] = int(check_array("seed", data["seed"], shape=(), dtype="int"))
+    t = check_array("t", data["t"], shape=(None,))
+    T = len(t)
+    if T > 1 and not (np.diff(t) > 0).all():
+        raise ValueError("t must increase from tick to tick")
+    kw["t"] = t
+    sensors = check_array("sensors", data["sensors"], shape=(T, None))
+    if sensors.shape[1] < 1 or (sensors.size and (sensors.min() < 0 or sensors.max() > 1)):
+        raise ValueError(f"sensors must be (T, n >= 1) readings in [0, 1], got shape "
+                         f"{sensors.shape}")
+    kw["sensors"] = sensors
+    for k in ("x", "y", "heading", "speed"):
+        kw[k] = check_array(k, data[k], shape=(T,))
+    names = data["region_names"]
+    if names.ndim != 1 or (names.size and names.dtype.kind != "U"):
+        raise ValueError(f"region_names must be a list of text, got dtype {names.dtype}")
+    kw["region_names"] = [str(n) for n in names]
+    for k in ("floor", "label", "region"):
+        v = check_array(k, data[k], shape=(T,), dtype="int")
+        if v.size and (v.min() < -1 or v.max() > np.iinfo(np.int16).max):
+            raise ValueError(f"{k} holds an index outside [-1, 32767]")
+        kw[k] = v.astype(np.int16)
+    if T and kw["region"].max() >= len(names):  # type: ignore[union-attr]
+        raise ValueError(f"region indices exceed the {len(names)} region_names")
+    kw["event_t"] = check_array("event_t", data["event_t"], shape=(None,))
+    E = len(kw["event_t"])  # type: ignore[arg-type]
+    for k in ("event_kind", "event_detail"):
+        v = data[k]
+        if v.shape != (E,) or (E and v.dtype.kind != "U"):
+            raise ValueError(f"{k} must be {E} text values, got dtype {v.dtype} shape {v.shape}")
+        kw[k] = v
+    return kw
 
 
 def record(arena: Arena | str, ticks: int, *, seed: int = 0, rho: float = 0.008,
@@ -171,6 +216,6 @@ def record_main(argv: Sequence[str]) -> int:
 
         fig = plot_trajectory(arena, rec)
         png = Path(a.out).with_suffix(".png")
-        fig.savefig(png, dpi=120)
+        save_figure(fig, png, dpi=120)
         print(f"wrote {png}", file=sys.stderr)
     return 0

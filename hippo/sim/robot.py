@@ -20,6 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hippo._checks import check_fields
+
 
 @dataclass(frozen=True)
 class SensorModel:
@@ -32,6 +34,7 @@ class SensorModel:
     noise_sd: float = 0.02
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if not 0 <= self.range_min < self.range_max:
             raise ValueError(f"sensor range must satisfy 0 <= min < max, got "
                              f"[{self.range_min}, {self.range_max}]")
@@ -82,6 +85,7 @@ class RobotParams:
     moving_threshold: float = 0.3  #: cm/s of translation above which the robot "is moving"
 
     def __post_init__(self) -> None:
+        check_fields(self)
         for name in ("radius", "axle", "mass", "speed_max"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):

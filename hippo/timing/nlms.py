@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hippo._checks import check_finite, check_positive, check_range
+from hippo._checks import check_fields, check_finite, check_positive, check_range
 
 __all__ = ["NLMS", "NLMSParams", "learning_modulation", "nlms_update", "sliding_mean"]
 
@@ -55,6 +55,7 @@ class NLMSParams:
     leak: float = 0.25
 
     def __post_init__(self) -> None:
+        check_fields(self)
         check_positive("alpha", self.alpha)
         check_positive("sigma1", self.sigma1)
         check_positive("sigma2", self.sigma2, allow_zero=True)

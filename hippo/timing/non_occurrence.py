@@ -31,7 +31,7 @@ import math
 from collections.abc import Hashable, Mapping
 from dataclasses import dataclass
 
-from hippo._checks import check_finite, check_positive, check_range
+from hippo._checks import check_fields, check_finite, check_positive, check_range
 
 __all__ = ["NonOccurrence", "NonOccurrenceParams"]
 
@@ -56,6 +56,7 @@ class NonOccurrenceParams:
     fall_fraction: float = 0.5
 
     def __post_init__(self) -> None:
+        check_fields(self)
         check_positive("min_peak", self.min_peak)
         check_positive("rel_tolerance", self.rel_tolerance, allow_zero=True)
         check_positive("abs_tolerance", self.abs_tolerance, allow_zero=True)

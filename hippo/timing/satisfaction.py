@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hippo._checks import check_finite, check_positive
+from hippo._checks import check_fields, check_finite, check_positive
 
 __all__ = ["Satisfaction", "SatisfactionParams"]
 
@@ -44,6 +44,7 @@ class SatisfactionParams:
     theta: float = 0.2
 
     def __post_init__(self) -> None:
+        check_fields(self)
         check_positive("alpha", self.alpha)
         check_positive("gamma", self.gamma, allow_zero=True)
         check_positive("theta", self.theta, allow_zero=True)

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from hippo._checks import check_finite, check_positive, check_range
+from hippo._checks import check_fields, check_finite, check_positive, check_range
 
 __all__ = ["BatteryState", "SpectralParams", "SpectralTiming", "check_state_id"]
 
@@ -63,6 +63,7 @@ class SpectralParams:
     readout_fraction: float = 0.5
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if int(self.n_cells) != self.n_cells or self.n_cells < 4:
             raise ValueError(f"n_cells must be an integer >= 4, got {self.n_cells!r}")
         check_positive("mu_min", self.mu_min)

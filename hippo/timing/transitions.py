@@ -46,7 +46,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from hippo._checks import check_positive
+from hippo._checks import check_fields, check_positive
 from hippo.timing.nlms import NLMSParams, learning_modulation, nlms_update
 from hippo.timing.spectral import BatteryState, SpectralTiming, check_state_id
 
@@ -77,6 +77,7 @@ class TransitionParams:
     latency: float = 0.2
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if not isinstance(self.nlms, NLMSParams):
             raise ValueError(f"nlms must be NLMSParams, got {type(self.nlms).__name__}")
         check_positive("min_strength", self.min_strength)

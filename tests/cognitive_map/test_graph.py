@@ -196,7 +196,7 @@ def test_graphml_bad_files(tmp_path):
     text = good.read_text()
     assert ">move</data>" in text
     (tmp_path / "g2.graphml").write_text(text.replace(">move</data>", ">fly</data>", 1))
-    with pytest.raises(CorruptFileError, match="bad action"):
+    with pytest.raises(CorruptFileError, match="action must be 'move' or 'wait'"):
         TransitionGraph.from_graphml(tmp_path / "g2.graphml")
     lines = text.splitlines()
     edge = next(i for i, line in enumerate(lines) if "<edge " in line)

@@ -280,7 +280,7 @@ def test_wait_transition_wins_when_its_drive_is_strong():
 
 def test_bad_input():
     for w in (0.0, 1.0, 1.5, -0.1, float("nan")):
-        with pytest.raises(ValueError, match="propagation weight w"):
+        with pytest.raises(ValueError, match=r"propagation weight w|PlannerParams\.w must"):
             PlannerParams(w=w)
     with pytest.raises(ValueError, match="noise"):
         PlannerParams(noise=-0.1)
