@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from hippo._checks import check_positive
+from hippo._checks import check_fields, check_positive
 from hippo.cognitive_map.graph import TransitionGraph
 
 __all__ = ["LocaliserParams", "MapLocaliser"]
@@ -34,7 +34,7 @@ class LocaliserParams:
 
     n_known: known place changes in a row that localise the robot (default 1).
     delay_tolerance: relative tolerance on a change's timing against the learned delay, from
-        the second change on (default 0.5: within ×1.5 either way; ``inf``: no timing check).
+        the second change on (default 0.5: within ×1.5 either way).
     max_time: seconds after the reset after which the robot counts as localised anyway
         (default 60).
     """
@@ -44,6 +44,7 @@ class LocaliserParams:
     max_time: float = 60.0
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if int(self.n_known) != self.n_known or self.n_known < 1:
             raise ValueError(f"n_known must be an integer >= 1, got {self.n_known!r}")
         check_positive("delay_tolerance", self.delay_tolerance)
@@ -94,7 +95,7 @@ class MapLocaliser:
         if prev is None or prev == state:
             return self.check(t)
         ok = (prev, int(state)) in graph
-        if ok and self._run >= 1 and math.isfinite(self.params.delay_tolerance):
+        if ok and self._run >= 1:
             delay = graph.delay((prev, int(state)))
             if delay is not None and delay > 0 and t - started > 0:
                 ok = abs(math.log((t - started) / delay)) <= math.log1p(

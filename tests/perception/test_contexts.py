@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.stats import chi2
 
-from hippo.cognitive_map.contexts import ContextParams, ContextStates, g_test
+from hippo.perception.contexts import ContextParams, ContextStates, g_test
 from hippo.cognitive_map.quality import next_state_bits
 
 

@@ -71,7 +71,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.stats import chi2, norm
 
-from hippo._checks import check_positive, check_range
+from hippo._checks import check_fields, check_positive, check_range
 
 __all__ = ["ContextKey", "ContextParams", "ContextStates", "g_test"]
 
@@ -106,6 +106,7 @@ class ContextParams:
     merge_horizon: int = 8
 
     def __post_init__(self) -> None:
+        check_fields(self)
         if int(self.max_depth) != self.max_depth or self.max_depth < 0:
             raise ValueError(f"max_depth must be an integer >= 0, got {self.max_depth!r}")
         if int(self.min_count) != self.min_count or self.min_count < 2:
