@@ -49,6 +49,12 @@ step has ``min_count`` stays on both sides, they count as different). The horizo
 than ``max_depth``, so a place that a split depends on is not merged away. A merged place
 starts again unsplit; :meth:`ContextStates.same` names the place it was merged into.
 
+A learned field can also win only on some passes, for a moment, at the start of the next
+one's stretch: the robot goes ``P → X → Y`` on some passes and ``P → Y`` on others. Such a
+bypassed place ``X`` (its usual way in is ``P`` and out is ``Y``, and ``P`` is also ``Y``'s
+usual way in, ``min_count`` times without ``X``) is merged into ``Y``: one state that
+follows ``P`` on every pass.
+
 **Memory.** Each place keeps only its last ``memory`` instances (a ring buffer), so a long
 deployment holds a bounded amount of data; trees are bounded by ``max_depth`` and the number
 of places.
@@ -93,6 +99,8 @@ class ContextParams:
     merge_horizon: places merge only if no step of their past or future up to this many
         events apart tells them apart (default 8; longer than ``max_depth``, so that a place
         a split depends on is not merged away).
+    merge_bypasses: merge a place that the robot passes through on the way from ``P`` to ``Y``
+        on some passes and skips on others (``P → Y`` directly) into ``Y`` (default True).
     """
 
     max_depth: int = 3
@@ -104,6 +112,7 @@ class ContextParams:
     memory: int = 256
     merge_places: bool = True
     merge_horizon: int = 8
+    merge_bypasses: bool = True
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -466,6 +475,13 @@ class ContextStates:
         if min(sum(pred(i) == tp for i in mine), sum(succ(i) == ts for i in mine)) < \
                 0.5 * len(mine):
             return  # no usual way in and out: nothing says another place is the same
+        if p.merge_bypasses and ts in self._data and ts != tp:
+            # a bypass: the robot goes tp -> place -> ts on some passes and tp -> ts on others
+            direct = [i for i in self._data[ts] if i.history and pred(i) != place]
+            if (sum(pred(i) == tp for i in direct) >= p.min_count
+                    and top(direct, pred) == tp):
+                self._join(ts, place)
+                return
         for other in list(self._trees):
             if other == place or other in (tp, ts):
                 continue

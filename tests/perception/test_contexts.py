@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from scipy.stats import chi2
 
-from hippo.perception.contexts import ContextParams, ContextStates, g_test
 from hippo.cognitive_map.quality import next_state_bits
+from hippo.perception.contexts import ContextParams, ContextStates, g_test
 
 
 def aliased_corridor(n_laps: int, seed: int, dwell: float = 2.0, t0: float = 0.0):
@@ -181,3 +181,24 @@ def test_places_that_differ_in_the_dwell_after_them_do_not_merge():
             t += d * math.exp(0.05 * rng.standard_normal())
     assert cs.n_place_merges == 0
     assert len(cs.states_of("D")) == 2  # and D splits by the way in
+
+
+def test_a_place_that_wins_only_on_some_passes_merges_into_the_next_one():
+    # P -> X -> Y on some passes, P -> Y on others (a field that wins briefly at the start of
+    # Y's stretch): X joins Y, and what follows P becomes certain
+    rng = np.random.default_rng(9)
+    cs, t = ContextStates(), 0.0
+    for _ in range(60):
+        route = ("H", "P", "X", "Y", "Z") if rng.integers(2) == 0 else ("H", "P", "Y", "Z")
+        for p in route:
+            t += 2.0 * math.exp(0.05 * rng.standard_normal())
+            cs.observe(p, t)
+    assert cs.same("X") == "Y"
+    assert cs.predict(cs.context_of("P")) == {"Y": 1.0}
+    # off: two states
+    cs = ContextStates(ContextParams(merge_bypasses=False))
+    for _ in range(60):
+        for p in ("H", "P", "X", "Y", "Z") if rng.integers(2) == 0 else ("H", "P", "Y", "Z"):
+            t += 2.0
+            cs.observe(p, t)
+    assert cs.same("X") == "X"
