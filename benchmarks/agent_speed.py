@@ -20,8 +20,8 @@ import numpy as np
 
 from hippo.agent import Agent, AgentParams
 from hippo.cognitive_map import DriveParams, PlannerParams
-from hippo.scenarios.place_preference import STATES, make_places
 from hippo.sim import WallFollower, World, arenas
+from hippo.tasks import PLACE_STATES, make_places
 
 
 def setup(kind: str, seed: int = 0) -> tuple[World, Agent, object]:
@@ -34,11 +34,11 @@ def setup(kind: str, seed: int = 0) -> tuple[World, Agent, object]:
         obs = world.step(ctrl.act(obs))
         sensors.append(obs.ir)
     places = make_places(kind, arena, np.array(sensors), 24, seed, 32)
-    params = AgentParams(states=STATES, planner=PlannerParams(exploration_threshold=0.3))
+    params = AgentParams(states=PLACE_STATES, planner=PlannerParams(exploration_threshold=0.3))
     agent = Agent(places, drives={"sound": DriveParams(epsilon=0.02)}, params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)
     for _ in range(2000):  # learn a map first
-        obs = world.step(agent.step(obs))
+        obs = world.step(agent.step(obs, world.truth))
     return world, agent, obs
 
 
@@ -47,7 +47,7 @@ def bench(kind: str, ticks: int) -> tuple[float, float]:
     agent.drives.set_level("sound", 0.8)
     t0 = time.perf_counter()
     for _ in range(ticks):
-        obs = world.step(agent.step(obs))
+        obs = world.step(agent.step(obs, world.truth))
     wall = time.perf_counter() - t0
     return ticks / wall, ticks * world.dt / wall
 
@@ -63,7 +63,7 @@ def main() -> None:
         prof = cProfile.Profile()
         prof.enable()
         for _ in range(a.ticks // 2):
-            obs = world.step(agent.step(obs))
+            obs = world.step(agent.step(obs, world.truth))
         prof.disable()
         pstats.Stats(prof).sort_stats("tottime").print_stats(18)
         return

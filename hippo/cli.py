@@ -45,6 +45,41 @@ def run_scenario(name: str, argv: Sequence[str] = ()) -> dict:
     return module.run(args)
 
 
+def record_main(argv: Sequence[str]) -> int:
+    """``hippo record ARENA --ticks N --rho R --sensors ir8 --seed S --out run.npz``."""
+    from hippo.sim import arenas as arena_registry
+    from hippo.sim.record import record
+
+    p = argparse.ArgumentParser(prog="hippo record",
+                                description="Record a wall-following run to .npz")
+    p.add_argument("arena", help=f"one of: {', '.join(arena_registry.ARENAS)}")
+    p.add_argument("--ticks", type=int, default=18120)
+    p.add_argument("--rho", type=float, default=0.008)
+    p.add_argument("--sensors", default="ir8", choices=["ir8", "ray17"])
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--out", default="run.npz")
+    p.add_argument("--figure", action="store_true", help="also write a trajectory PNG")
+    a = p.parse_args(list(argv))
+    try:
+        arena = arena_registry.get(a.arena)
+    except ValueError as exc:
+        p.error(str(exc))
+    rec = record(arena, a.ticks, seed=a.seed, rho=a.rho, sensors=a.sensors)
+    path = rec.save(a.out)
+    print(f"wrote {len(rec)} ticks to {path}", file=sys.stderr)
+    if a.figure:
+        from pathlib import Path
+
+        from hippo.io import save_figure
+        from hippo.plots.sim import plot_trajectory
+
+        fig, _ = plot_trajectory(arena, rec)
+        png = Path(a.out).with_suffix(".png")
+        save_figure(fig, png, dpi=120)
+        print(f"wrote {png}", file=sys.stderr)
+    return 0
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     top = argparse.ArgumentParser(prog="hippo", description=__doc__.strip().splitlines()[0])
@@ -67,8 +102,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         run_scenario("demo", rest)
         return 0
     if cmd == "record":
-        from hippo.sim.record import record_main
-
         return record_main(rest)
     if cmd == "run":
         if not rest or rest[0] in ("-h", "--help"):

@@ -20,6 +20,7 @@ from __future__ import annotations
 import argparse
 import itertools
 import math
+from enum import IntEnum
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -27,18 +28,19 @@ import numpy as np
 
 from hippo.agent import Agent, AgentParams
 from hippo.cognitive_map import DriveParams, PlannerParams
-from hippo.io import save_json, save_npz
+from hippo.io import save_json
 from hippo.plots.sim import draw_arena
-from hippo.scenarios.place_preference import (
-    STATES,
-    Log,
-    explore,
-    learn_map,
-    make_places,
-    run_agent,
-)
 from hippo.sim import ArenaBuilder, World
 from hippo.sim.arena import Arena
+from hippo.tasks import PLACE_STATES, Log, Route, Session, explore, learn_map, make_places
+from hippo.types import Mode, StateKind
+
+
+class Phase(IntEnum):
+    EXPLORATION = 0
+    LESSON = 1
+    ALONE = 2
+
 
 DRIVES = {"food": DriveParams(epsilon=0.02), "water": DriveParams(epsilon=0.008)}
 WAIT_S = {"food": 8.0, "water": 12.0}        # how long the teacher holds the robot in each zone
@@ -65,12 +67,6 @@ def build_arena() -> Arena:
     return b.start(9, 60, -math.pi / 2).build()
 
 
-def route_to(start: tuple[float, float], goal: tuple[float, float]) -> list[tuple[float, float]]:
-    """Waypoints from ``start`` to ``goal`` along :data:`ROUTE`, counter-clockwise."""
-    i, j = (int(np.argmin([math.dist(p, q) for q in ROUTE])) for p in (start, goal))
-    return [ROUTE[(i + k) % len(ROUTE)] for k in range(1, (j - i) % len(ROUTE) + 1)] + [goal]
-
-
 def main(argv: list[str] | None = None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, default=0)
@@ -86,37 +82,30 @@ def main(argv: list[str] | None = None) -> dict:
     world = World(arena, sensors="ir8", seed=args.seed)
     dt, names = world.dt, list(DRIVES)
     log = Log(n_drives=len(names))
+    route = Route(ROUTE)
 
     # 1. explore with the wall follower: place cells from the robot's own sensors, then the map
-    explored = explore(world, round((10 if args.quick else 30) * 60 / dt), 0.0, args.seed, log,
-                       "exploration")
-    places = make_places(args.place_cells, arena, np.array([o.ir for o in explored]),
-                         16 if args.quick else 24, args.seed)
-    agent = Agent(places, drives=DRIVES, params=AgentParams(states=STATES, planner=PLANNER),
+    tour = explore(world, round((10 if args.quick else 30) * 60 / dt), 0.0, args.seed, log)
+    places = make_places(args.place_cells, arena, tour.sensors, 16 if args.quick else 24,
+                         args.seed)
+    agent = Agent(places, drives=DRIVES, params=AgentParams(states=PLACE_STATES, planner=PLANNER),
                   sensors=world.sensors, robot=world.robot, seed=args.seed)
-    learn_map(agent, explored)
-    obs = explored[-1]
+    learn_map(agent, tour)
+    s = Session(world, agent, log, obs=tour[-1], phase=Phase.LESSON)
 
     # 2. the lesson: leash into each zone, block there for its wait, reward its drive as it ends
-    def lead(obs, goal: tuple[float, float]):
-        world.teacher.lead(route_to(obs.pose[:2], goal))
-        return run_agent(world, agent, obs, 5000, log, 1, 0,
-                         until=lambda o: not world.teacher.leading)
-
     for _ in range(1 if args.quick else 2):
         for name in names:
-            obs = lead(obs, arena.landmarks[name])
-            world.teacher.block(WAIT_S[name])
-            obs = run_agent(world, agent, obs, round(WAIT_S[name] / dt) + 5, log, 1, 0,
-                            until=lambda o: not world.teacher.blocking)
+            s.lead(route.leg(s.truth.pose, arena.landmarks[name]), limit=5000)
+            s.block(WAIT_S[name])
             agent.reward(name)   # linked to the robot's next transition: the wait just ended
-            obs = run_agent(world, agent, obs, round(10 / dt), log, 1, 0, until=lambda o:
-                            agent.layer.key(agent.state).kind != "still")
-    obs = lead(obs, arena.landmarks[names[0]])   # close the loop: back to the first zone
+            s.run(round(10 / dt), until=lambda o: agent.kind(agent.state) != StateKind.STILL)
+    s.lead(route.leg(s.truth.pose, arena.landmarks[names[0]]), limit=5000)  # close the loop
 
     # 3. alone: each drive rises at its own rate from where the lesson left it
-    i0 = len(log.cols["t"])
-    run_agent(world, agent, obs, round(minutes * 60 / dt), log, 2, 0)
+    i0 = len(log)
+    s.phase = Phase.ALONE
+    s.run(round(minutes * 60 / dt))
     a = log.arrays()
     stops = chosen_stops(a, i0, world.robot.moving_threshold, dt)
     by_zone = {n: [s for s in stops if s[0] == k + 1] for k, n in enumerate(names)}
@@ -136,7 +125,7 @@ def main(argv: list[str] | None = None) -> dict:
         "states": agent.layer.n_states, "transitions": len(agent.graph),
     }
     save_json(out / "metrics.json", metrics)
-    save_npz(out / "run.npz", {**a, "drive_names": np.array(names)})
+    s.save(out, Phase)
     plot(arena, a, i0, names, out / "two_goals.png")
     return metrics
 
@@ -149,7 +138,7 @@ def chosen_stops(a: dict, i0: int, threshold: float, dt: float) -> list[tuple[in
     out = []
     for s, e in zip(edges[::2], edges[1::2]):
         if (e - s) * dt >= 1.0 and e < len(a["t"]) and a["zone"][s] > 0 and \
-                np.any(a["mode"][s:e] == 3):
+                np.any(a["mode"][s:e] == Mode.WAIT):
             out.append((int(a["zone"][s]), round(float((e - s) * dt), 3), int(s)))
     return out
 

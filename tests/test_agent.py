@@ -6,9 +6,12 @@ import numpy as np
 import pytest
 
 from hippo.agent import Agent, AgentParams, GroundTruthPlaceCells, LearnedPlaceCells
+from hippo.brain import BrainParams
 from hippo.cognitive_map import Action, DriveParams
+from hippo.motor import MotorParams
 from hippo.perception.place_cells import RCSFAICA
-from hippo.sim import ArenaBuilder, World, arenas
+from hippo.sim import ArenaBuilder, Teacher, World, arenas
+from hippo.types import GroundTruth, Mode
 
 
 def corridor_world():
@@ -18,12 +21,11 @@ def corridor_world():
 
 def test_ground_truth_place_cells_equation():
     pc = GroundTruthPlaceCells(np.array([[0.0, 0.0], [10.0, 0.0]]), sigma=5.0)
-
-    class Obs:
-        pose = (3.0, 4.0, 0.0)
-
-    a = pc.step(Obs())
+    a = pc.step(None, GroundTruth(0.0, 0, (3.0, 4.0, 0.0), 0.0))
     np.testing.assert_allclose(a, [math.exp(-25 / 50), math.exp(-65 / 50)])
+    # the true position is never read from the observation: without the truth, a clear error
+    with pytest.raises(ValueError, match="truth"):
+        pc.step(World(arenas.goal_arena(), seed=0).observe())
 
 
 def test_transitions_carry_path_integrated_headings():
@@ -33,7 +35,7 @@ def test_transitions_carry_path_integrated_headings():
                   sensors=world.sensors, robot=world.robot, seed=0)
     obs = world.reset(0)
     for _ in range(300):  # drive east along the corridor with the wall follower
-        obs = world.step(agent.step(obs))
+        obs = world.step(agent.step(obs, world.truth))
     moves = [t for t in agent.graph.transitions if not agent.graph.action(t).is_wait]
     assert len(moves) >= 3
     for t in moves:  # place k -> place k+1, eastwards, about 30 cm apart
@@ -52,14 +54,15 @@ def test_taught_wait_is_reproduced_at_the_learned_delay():
                   drives={"check": DriveParams(epsilon=0.05)}, sensors=world.sensors,
                   robot=world.robot, seed=0)
     obs = world.reset(0)
-    while obs.pose[0] < 110:
-        obs = world.step(agent.step(obs))
-    world.teacher.block(6.3)
-    while world.teacher.blocking:
-        obs = world.step(agent.step(obs))
+    while world.truth.pose[0] < 110:
+        obs = world.step(agent.step(obs, world.truth))
+    teacher = Teacher(world)
+    teacher.block(6.3)
+    while teacher.blocking:
+        obs = world.step(agent.step(obs, world.truth))
     agent.reward("check")
     for _ in range(20):
-        obs = world.step(agent.step(obs))
+        obs = world.step(agent.step(obs, world.truth))
     link = next(iter(agent.drives.links("check")))
     assert agent.layer.key(link[0]).kind == "still"
     learned = agent.cells.learned_delay(link)
@@ -70,7 +73,7 @@ def test_taught_wait_is_reproduced_at_the_learned_delay():
     agent.drives.set_level("check", 1.0)
     stops, still_since = [], None
     for _ in range(600):
-        obs = world.step(agent.step(obs))
+        obs = world.step(agent.step(obs, world.truth))
         if not obs.moving and still_since is None:
             still_since = obs.t
         elif obs.moving and still_since is not None:
@@ -87,13 +90,12 @@ def test_bad_input_is_refused():
     agent = Agent(GroundTruthPlaceCells(np.array([[20.0, 15.0]])), sensors=world.sensors,
                   robot=world.robot)
     obs = world.reset(0)
-    obs.ir = obs.ir.copy()
-    obs.ir[2] = np.nan
+    ir = obs.ir.copy()
+    ir[2] = np.nan
     with pytest.raises(ValueError, match="non-finite"):
-        agent.step(obs)
-    obs.ir = np.ones(5)
+        agent.step(obs.with_ir(ir), world.truth)
     with pytest.raises(ValueError, match="expected 8 sensor readings"):
-        agent.step(obs)
+        agent.step(obs.with_ir(np.ones(5)), world.truth)
     with pytest.raises(KeyError, match="unknown drive"):
         agent.reward("thirst")
     with pytest.raises(ValueError, match="settle_time"):
@@ -104,6 +106,18 @@ def test_bad_input_is_refused():
         AgentParams(wall_tolerance=0.0)
     with pytest.raises(ValueError, match="centre"):
         GroundTruthPlaceCells(np.zeros((0, 2)))
+    with pytest.raises(TypeError, match="unknown parameter"):
+        AgentParams(setle_time=1.0)
+
+
+def test_agent_params_route_flat_names_to_the_brain_and_the_motor():
+    p = AgentParams(settle_time=4.0, explore_rho=0.01, turn_limit=1.5)
+    assert p.brain == BrainParams(settle_time=4.0, turn_limit=1.5)
+    assert p.motor == MotorParams(explore_rho=0.01)
+    assert (p.settle_time, p.explore_rho, p.dt) == (4.0, 0.01, 0.2)
+    nested = AgentParams(brain=BrainParams(settle_time=4.0, turn_limit=1.5),
+                         motor=MotorParams(explore_rho=0.01))
+    assert nested == p
 
 
 def test_same_seed_same_run():
@@ -114,8 +128,8 @@ def test_same_seed_same_run():
         obs = world.reset(seed)
         xs = []
         for _ in range(400):
-            obs = world.step(agent.step(obs))
-            xs.append(obs.pose)
+            obs = world.step(agent.step(obs, world.truth))
+            xs.append(world.truth.pose)
         return np.array(xs), agent.layer.n_states
 
     a, na = run(3)
@@ -133,7 +147,8 @@ class _Recorder:
     def __init__(self) -> None:
         self.seen: list[np.ndarray] = []
 
-    def step(self, obs):
+    def step(self, obs, truth=None):
+        assert truth is None  # the agent passes the ground truth on only when given it
         self.seen.append(np.array(obs.ir))
         return np.array([1.0, 0.0])
 
@@ -154,16 +169,17 @@ def test_occluded_sensors_are_not_fed_to_the_place_cells():
     for _ in range(30):
         obs = world.step(agent.step(obs))
     clear = places.seen[-1].copy()  # the last view the agent had
-    world.teacher.block(3.0)
+    teacher = Teacher(world)
+    teacher.block(3.0)
     obs = world.step((0.0, 0.0))
-    assert agent.avoid.boxed_in(obs)
+    assert agent.motor.boxed_in(obs)
     for _ in range(5):
         obs = world.step(agent.step(obs))
     np.testing.assert_array_equal(places.seen[-1], clear)
     assert not np.array_equal(obs.ir, clear)
-    while world.teacher.blocking:
+    while teacher.blocking:
         obs = world.step(agent.step(obs))
-    assert not agent.avoid.boxed_in(obs)
+    assert not agent.motor.boxed_in(obs)
     agent.step(obs)  # the view is clear again: the place cells get it
     np.testing.assert_array_equal(places.seen[-1], obs.ir)
 
@@ -200,21 +216,22 @@ def test_a_wanted_stop_is_recognised_from_a_coactive_place():
     graph.add_transition(still, moving, Action.wait(), 10.0)
     agent.drives.reward("cp", (still, moving))
     agent.drives.set_level("cp", 1.0)
-    agent.state, agent.mode, agent.current = q, "move", (q, c)
+    decide = agent.brain.decide
+    agent.brain.state, decide.mode, decide.current = q, Mode.MOVE, (q, c)
 
     layer.place_activity = np.array([0.9, 0.4])   # C well below the winner: keep moving
-    agent._recognise_stop()
-    assert agent.mode == "move" and agent.current == (q, c)
+    decide.recognise_stop()
+    assert agent.mode == Mode.MOVE and agent.current == (q, c)
     layer.place_activity = np.array([0.9, 0.6])   # C at 2/3 of the winner: approach its stop
-    agent._recognise_stop()
-    assert agent.mode == "approach" and agent.current == (c, still)
+    decide.recognise_stop()
+    assert agent.mode == Mode.APPROACH and agent.current == (c, still)
     # an inhibited drive (its wait just ended) does not start the approach again
-    agent.mode, agent.current = "move", (q, c)
+    decide.mode, decide.current = Mode.MOVE, (q, c)
     agent.drives.inhibit("cp")
-    agent._recognise_stop()
-    assert agent.mode == "move"
+    decide.recognise_stop()
+    assert agent.mode == Mode.MOVE
     # and coactive = 0 disables the rule
     agent.drives.release("cp")
     agent.p = AgentParams(coactive=0.0)
-    agent._recognise_stop()
-    assert agent.mode == "move"
+    decide.recognise_stop()
+    assert agent.mode == Mode.MOVE

@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import json
 import math
-import operator
 import os
 from collections.abc import Callable, Hashable, Iterable, Iterator
 from dataclasses import dataclass
@@ -45,9 +44,7 @@ import numpy as np
 
 from hippo._checks import check_finite, check_positive, check_range
 from hippo.io import CorruptFileError, atomic_write_text
-
-Transition = tuple[int, int]
-"""A transition key: ``(a, b)``, the ids of the state left and the state entered."""
+from hippo.types import Transition, check_state_id
 
 WAIT = "wait"
 MOVE = "move"
@@ -121,17 +118,9 @@ def _as_action(action: ActionLike) -> Action:
 
 
 def state_id(value: Any, name: str = "state") -> int:
-    """Return ``value`` as an ``int`` state id >= 0, or raise ``ValueError`` (no bools, no
-    floats, no negative ids: the same ids as :mod:`hippo.timing`)."""
-    if isinstance(value, bool | np.bool_):
-        raise ValueError(f"{name} must be an integer state id, got {value!r}")
-    try:
-        v = operator.index(value)
-    except TypeError:
-        raise ValueError(f"{name} must be an integer state id, got {value!r}") from None
-    if v < 0:
-        raise ValueError(f"{name} must be a state id >= 0, got {v}")
-    return v
+    """Return ``value`` as an ``int`` state id, or raise ``ValueError`` (the one rule of
+    :func:`hippo.types.check_state_id`: an integer >= 0, no bools, no floats)."""
+    return check_state_id(name, value)
 
 
 def as_transition(t: Any) -> Transition:

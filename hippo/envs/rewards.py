@@ -67,22 +67,23 @@ class ShuttleTask(Task):
     def start_pose(self, rng: np.random.Generator) -> Pose:
         return self.arena.sample_free_pose(rng)
 
-    def _room(self, obs: Observation) -> str | None:
-        name = self.arena.region_of(obs.pose[0], obs.pose[1])
+    def _room(self, world: World) -> str | None:
+        x, y, _ = world.truth.pose  # the task reads the ground truth, never the agent
+        name = self.arena.region_of(x, y)
         return name if name in self.ROOMS else None
 
     def reset(self, world: World, obs: Observation) -> dict[str, Any]:
-        room = self._room(obs)
+        room = self._room(world)
         # in the corridor: the room it faces pays first
         if room is None:
-            room = "room_a" if math.cos(obs.pose[2]) > 0 else "room_b"
+            room = "room_a" if math.cos(world.truth.pose[2]) > 0 else "room_b"
         self.target = self.ROOMS[1 - self.ROOMS.index(room)]
         self.visits = 0
         return {"target": self.target, "visits": 0}
 
     def step(self, world: World, obs: Observation) -> tuple[float, bool, dict[str, Any]]:
         reward = 0.0
-        if self._room(obs) == self.target:
+        if self._room(world) == self.target:
             reward = 1.0
             self.visits += 1
             self.target = self.ROOMS[1 - self.ROOMS.index(self.target)]
@@ -134,7 +135,7 @@ class GoalWaitTask(Task):
             return 1.0, True, {"still_in_goal_s": self.timer.still}
         still = self.timer.update(obs.floor == self.colour, obs, world.dt)
         if not self.sounded and still >= self.delay - 1e-9:
-            world.teacher.sound()
+            world.emit_sound()
             self.sounded = True
         return 0.0, False, {"still_in_goal_s": still}
 
@@ -183,9 +184,10 @@ class PatrolTask(Task):
             self.timer = _StillTimer()
             return 1.0, False, self._info()
         cx, cy = self.checkpoints[self.due]
-        near = math.hypot(obs.pose[0] - cx, obs.pose[1] - cy) <= self.radius
+        x, y, _ = world.truth.pose
+        near = math.hypot(x - cx, y - cy) <= self.radius
         still = self.timer.update(near, obs, world.dt)
         if not self.sounded and still >= self.waits[self.due] - 1e-9:
-            world.teacher.sound()
+            world.emit_sound()
             self.sounded = True
         return 0.0, False, self._info()

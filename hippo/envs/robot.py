@@ -139,9 +139,10 @@ class RobotEnv(gym.Env):
         }
 
     def _truth(self, obs: Observation) -> dict[str, Any]:
-        x, y, h = obs.pose
+        truth = self.world.truth  # the ground truth of obs (info only, never the observation)
+        x, y, h = truth.pose
         arena = self.task.arena
-        return {"t": obs.t, "pose": np.array([x, y, h]), "speed": obs.speed,
+        return {"t": obs.t, "pose": np.array([x, y, h]), "speed": truth.speed,
                 "region": arena.region_of(x, y),
                 "location": int(arena.nearest_location(x, y))}
 

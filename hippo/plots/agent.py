@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from hippo.io import save_figure
@@ -33,7 +34,7 @@ def state_centres(winner: np.ndarray, x: np.ndarray, y: np.ndarray) -> dict[int,
 
 
 def plot_map(arena: Arena, agent: Agent, arrays: Mapping[str, np.ndarray], *,
-             title: str | None = None) -> Figure:
+             title: str | None = None) -> tuple[Figure, Axes]:
     """The learned cognitive map over the arena, states at their mean true position."""
     pos = state_centres(arrays["winner"], arrays["x"], arrays["y"])
     act = agent.planner.activity(agent.graph, agent.drives) if len(agent.graph) else None
@@ -43,11 +44,11 @@ def plot_map(arena: Arena, agent: Agent, arrays: Mapping[str, np.ndarray], *,
     plot_cognitive_map(agent.graph, act, agent.drives, ax=ax, positions=pos,
                        title=title or f"learned map: {len(pos)} states, {len(agent.graph)} "
                                       "transitions")
-    return fig
+    return fig, ax
 
 
 def plot_trials(arena: Arena, arrays: Mapping[str, np.ndarray], phase: int,
-                title: str) -> Figure:
+                title: str) -> tuple[Figure, Axes]:
     """Trajectories of each trial of ``phase`` (start: cross)."""
     fig, ax = plt.subplots(figsize=(6, 6 * arena.height / arena.width + 0.4),
                            layout="constrained")
@@ -59,11 +60,11 @@ def plot_trials(arena: Arena, arrays: Mapping[str, np.ndarray], phase: int,
         ax.plot(arrays["x"][m], arrays["y"][m], lw=1, color=cmap(i % 10))
         ax.plot(arrays["x"][m][0], arrays["y"][m][0], "x", ms=9, mew=2, color=cmap(i % 10))
     ax.set_title(title)
-    return fig
+    return fig, ax
 
 
 def plot_wait_profiles(arrays: Mapping[str, np.ndarray], trials: Sequence[Mapping[str, Any]],
-                       delay: float) -> Figure:
+                       delay: float) -> tuple[Figure, np.ndarray]:
     """HIREL Fig. 6: speed and reward prediction around the stop, rewarded vs extinction."""
     fig, axes = plt.subplots(2, 2, figsize=(10, 5.5), sharex=True, layout="constrained")
     t = arrays["t"]
@@ -92,15 +93,17 @@ def plot_wait_profiles(arrays: Mapping[str, np.ndarray], trials: Sequence[Mappin
         if ax.get_legend_handles_labels()[0]:
             handles, labels = ax.get_legend_handles_labels()
             ax.legend(handles[:1], labels[:1], fontsize=8, loc="upper right")
-    return fig
+    return fig, axes
 
 
 def plot_place_preference(out: Path, arena: Arena, agent: Agent,
                           arrays: Mapping[str, np.ndarray], trials: Sequence[Mapping[str, Any]],
                           delay: float) -> list[Path]:
-    """Write the place-preference figures into ``out``; returns their paths."""
+    """Write the place-preference figures into ``out``; returns their paths (a writer: the
+    figures themselves come from :func:`plot_map`, :func:`plot_trials`,
+    :func:`plot_wait_profiles`)."""
     paths = []
-    for name, fig in (
+    for name, (fig, _) in (
         ("map.png", plot_map(arena, agent, arrays)),
         ("trajectories.png", plot_trials(arena, arrays, 2, "rewarded trials: paths to the goal")),
         ("waits.png", plot_wait_profiles(arrays, trials, delay)),
@@ -111,7 +114,7 @@ def plot_place_preference(out: Path, arena: Arena, agent: Agent,
     return paths
 
 
-def plot_waits_table(rows: Sequence[Mapping[str, Any]]) -> Figure:
+def plot_waits_table(rows: Sequence[Mapping[str, Any]]) -> tuple[Figure, Axes]:
     """HIREL Table I as a figure: learned wait vs each reproduced wait, per checkpoint."""
     fig, ax = plt.subplots(figsize=(6, 3.6), layout="constrained")
     for k, r in enumerate(rows):
@@ -125,12 +128,13 @@ def plot_waits_table(rows: Sequence[Mapping[str, Any]]) -> Figure:
     ax.set_ylabel("wait (s)")
     ax.legend(fontsize=8)
     ax.set_title("checkpoint waits: learned vs reproduced")
-    return fig
+    return fig, ax
 
 
 def plot_patrol(out: Path, arena: Arena, agent: Agent, arrays: Mapping[str, np.ndarray],
                 rows: Sequence[Mapping[str, Any]]) -> list[Path]:
-    """Write the patrol figures into ``out`` (HIREL Fig. 7a, 7b and Table I)."""
+    """Write the patrol figures into ``out`` (HIREL Fig. 7a, 7b and Table I); returns their
+    paths."""
     fig_b, ax = plt.subplots(figsize=(7, 5.5), layout="constrained")
     draw_arena(arena, ax, locations=False)
     for phase, colour, label in ((1, "k", "taught (leash)"), (4, "tab:blue", "reproduced")):
@@ -144,8 +148,9 @@ def plot_patrol(out: Path, arena: Arena, agent: Agent, arrays: Mapping[str, np.n
     ax.legend(loc="upper right", fontsize=8)
     ax.set_title("patrol: taught and reproduced trajectories")
     paths = []
-    for name, fig in (("map.png", plot_map(arena, agent, arrays)),
-                      ("trajectories.png", fig_b), ("waits_table.png", plot_waits_table(rows))):
+    for name, (fig, _) in (("map.png", plot_map(arena, agent, arrays)),
+                           ("trajectories.png", (fig_b, ax)),
+                           ("waits_table.png", plot_waits_table(rows))):
         save_figure(fig, out / name, dpi=110)
         plt.close(fig)
         paths.append(out / name)

@@ -50,8 +50,9 @@ def plot_cognitive_map(graph: TransitionGraph, activity: Activity | Mapping[Tran
                        walls: Iterable[Segment] | None = None, path: Sequence[Transition] = (),
                        ax: Axes | None = None, positions: Mapping[int, Sequence[float]]
                        | None = None, cmap: str = "viridis", log_activity: bool = True,
-                       labels: bool | None = None, title: str | None = None) -> Figure:
-    """Draw ``graph`` over its arena and return the figure.
+                       labels: bool | None = None, title: str | None = None
+                       ) -> tuple[Figure, Axes]:
+    """Draw ``graph`` over its arena; returns ``(fig, ax)``.
 
     activity:  per-transition activity (an :class:`Activity` or mapping); arrows take its colour
                (log10 scale if ``log_activity``, since it falls as ``w^hops``).
@@ -156,4 +157,4 @@ def plot_cognitive_map(graph: TransitionGraph, activity: Activity | Mapping[Tran
     if handles:
         ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=4, fontsize=7,
                   frameon=False)
-    return fig
+    return fig, ax

@@ -28,7 +28,8 @@ CMAP = "jet"  # the papers' colours: blue low, green intermediate, red peak
 def plot_place_cell(arena: Arena, xy: np.ndarray, labels: np.ndarray, y: np.ndarray, *,
                     t: np.ndarray | None = None, title: str = "",
                     events: Sequence[int] = (), event_label: str = "kidnap",
-                    truth: np.ndarray | None = None, truth_label: str = "") -> Figure:
+                    truth: np.ndarray | None = None, truth_label: str = ""
+                    ) -> tuple[Figure, np.ndarray]:
     """SMC09 Figs. 5-8 for one unit ``y`` (T,): map on top, location-vs-time below."""
     y = np.asarray(y, dtype=float)
     t = np.arange(len(y)) if t is None else np.asarray(t)
@@ -59,12 +60,12 @@ def plot_place_cell(arena: Arena, xy: np.ndarray, labels: np.ndarray, y: np.ndar
         ax2.axvline(t[e], color="m", lw=1.2, label=event_label if i == 0 else None)
     if len(events) or truth is not None:
         ax2.legend(loc="upper left", fontsize=8)
-    return fig
+    return fig, np.array([ax, ax2])
 
 
 def plot_activation_map(t: np.ndarray, labels: np.ndarray, Y: np.ndarray, order: np.ndarray, *,
                         threshold: float = 4.5, n_locations: int | None = None,
-                        title: str = "") -> Figure:
+                        title: str = "") -> tuple[Figure, np.ndarray]:
     """ICANN09 Fig. 3: occupancy grid (left) and spatially ordered ICA activation map (right).
 
     Each dot on the right is a unit (ranked by its preferred location) at a tick where it
@@ -89,12 +90,12 @@ def plot_activation_map(t: np.ndarray, labels: np.ndarray, Y: np.ndarray, order:
     a2.set_title(f"ICA activation map (output ≥ {threshold:g})")
     if title:
         fig.suptitle(title)
-    return fig
+    return fig, np.array([a1, a2])
 
 
 def plot_units_over_arena(arena: Arena, fields: np.ndarray, extent: tuple[float, ...], *,
                           units: Sequence[int] | None = None, ncols: int = 10,
-                          title: str = "") -> Figure:
+                          title: str = "") -> tuple[Figure, np.ndarray]:
     """Small multiples: each unit's mean response on a spatial grid (``fields`` (k, ny, nx))."""
     units = list(range(fields.shape[0])) if units is None else list(units)
     nrows = max(1, int(np.ceil(len(units) / ncols)))
@@ -112,11 +113,12 @@ def plot_units_over_arena(arena: Arena, fields: np.ndarray, extent: tuple[float,
         ax.set_title(str(j + 1), fontsize=7, pad=1)
     if title:
         fig.suptitle(title)
-    return fig
+    return fig, axes
 
 
 def plot_sfa_units(arena: Arena, xy: np.ndarray, labels: np.ndarray, Ysfa: np.ndarray,
-                   units: Sequence[int], *, t: np.ndarray | None = None) -> Figure:
+                   units: Sequence[int], *, t: np.ndarray | None = None
+                   ) -> tuple[Figure, np.ndarray]:
     """ICANN09 Fig. 2(a): a few SFA units over time (left) and over the arena (right)."""
     t = np.arange(len(xy)) if t is None else np.asarray(t)
     fig, axes = plt.subplots(len(units), 2, figsize=(11, 2.8 * len(units)),
@@ -135,4 +137,4 @@ def plot_sfa_units(arena: Arena, xy: np.ndarray, labels: np.ndarray, Ysfa: np.nd
         row[1].set_xlabel("")
         row[1].set_ylabel("")
     axes[-1, 0].set_xlabel("tick")
-    return fig
+    return fig, axes

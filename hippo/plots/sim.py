@@ -19,7 +19,7 @@ ZONE_COLOURS = ["none", "tab:red", "tab:green", "tab:blue", "tab:orange", "tab:p
 
 
 def draw_arena(arena: Arena, ax: Axes | None = None, *, locations: bool = True,
-               labels: bool = False) -> Axes:
+               labels: bool = False) -> tuple[Figure, Axes]:
     """Walls (black), coloured zones, and the labelled reference locations (grey triangles)."""
     if ax is None:
         _, ax = plt.subplots(figsize=(6, 6 * arena.height / arena.width))
@@ -40,18 +40,18 @@ def draw_arena(arena: Arena, ax: Axes | None = None, *, locations: bool = True,
     ax.set_aspect("equal")
     ax.set_xlabel("x (cm)")
     ax.set_ylabel("y (cm)")
-    return ax
+    return ax.figure, ax
 
 
 def plot_trajectory(arena: Arena, rec: Recording | None = None, *, xy: np.ndarray | None = None,
                     colour: np.ndarray | None = None, ax: Axes | None = None,
-                    title: str | None = None, cmap: str = "viridis") -> Figure:
+                    title: str | None = None, cmap: str = "viridis") -> tuple[Figure, Axes]:
     """The arena with the robot's path, coloured by time (or by ``colour``, e.g. a unit)."""
     if xy is None:
         if rec is None:
             raise ValueError("give a Recording or an (T, 2) array of positions")
         xy = rec.positions
-    ax = draw_arena(arena, ax)
+    fig, ax = draw_arena(arena, ax)
     c = np.arange(len(xy)) if colour is None else np.asarray(colour)
     pts = xy.reshape(-1, 1, 2)
     lc = LineCollection(np.concatenate([pts[:-1], pts[1:]], axis=1), array=c[:-1], cmap=cmap,
@@ -59,11 +59,11 @@ def plot_trajectory(arena: Arena, rec: Recording | None = None, *, xy: np.ndarra
     ax.add_collection(lc)
     ax.figure.colorbar(lc, ax=ax, label="tick" if colour is None else "activity", shrink=0.8)
     ax.set_title(title or f"{arena.name}: {len(xy)} ticks")
-    return ax.figure
+    return fig, ax
 
 
 def plot_sensor_strip(rec: Recording, start: int = 0, stop: int | None = None,
-                      ax: Axes | None = None) -> Figure:
+                      ax: Axes | None = None) -> tuple[Figure, Axes]:
     """Sensor readings over time as an image (rows: sensors), with the region underneath."""
     stop = len(rec) if stop is None else stop
     if ax is None:
@@ -74,4 +74,4 @@ def plot_sensor_strip(rec: Recording, start: int = 0, stop: int | None = None,
     ax.set_xlabel("time (s)")
     ax.set_ylabel("sensor")
     ax.set_title("sensor readings (0 = touching, 1 = nothing in range)")
-    return ax.figure
+    return ax.figure, ax

@@ -54,7 +54,8 @@ def _trial_panel(ax: Axes, trace: TrialTrace, delay: float, title: str, *,
 
 
 def plot_fig6(rewarded: TrialTrace, extinction: TrialTrace, delay: float,
-              by_delay: Mapping[float, TrialTrace], *, title: str = "") -> Figure:
+              by_delay: Mapping[float, TrialTrace], *, title: str = ""
+              ) -> tuple[Figure, np.ndarray]:
     """HIREL Fig. 6 without the robot, plus learned predictions for several delays.
 
     rewarded, extinction: trials after learning ``delay`` (the event came / was omitted).
@@ -89,7 +90,7 @@ def plot_fig6(rewarded: TrialTrace, extinction: TrialTrace, delay: float,
     ax2.legend(fontsize=7)
     if title:
         fig.suptitle(title)
-    return fig
+    return fig, axes
 
 
 def plot_reproduction(learned: Sequence[float], reproduced: Sequence[Sequence[float]], *,
@@ -135,4 +136,4 @@ def plot_reproduction(learned: Sequence[float], reproduced: Sequence[Sequence[fl
     ax2.legend(fontsize=8)
     if title:
         fig.suptitle(title)
-    return fig
+    return fig, np.array([ax, ax2])

@@ -29,9 +29,10 @@ def run(args: argparse.Namespace) -> dict:
     rec = record(arena, ticks, seed=args.seed, rho=args.rho, sensors=sensors)
     wall = time.perf_counter() - t0
     rec.save(out / "run.npz")
-    fig = plot_trajectory(arena, rec)
+    fig, _ = plot_trajectory(arena, rec)
     save_figure(fig, out / "trajectory.png", dpi=120)
-    save_figure(plot_sensor_strip(rec, 0, min(len(rec), 1500)), out / "sensors.png", dpi=120)
+    fig, _ = plot_sensor_strip(rec, 0, min(len(rec), 1500))
+    save_figure(fig, out / "sensors.png", dpi=120)
     visited = {name: float(np.mean(rec.region == i)) for i, name in enumerate(rec.region_names)}
     metrics = {
         "arena": arena.name, "ticks": ticks, "seed": args.seed, "rho": args.rho,

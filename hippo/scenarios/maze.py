@@ -260,6 +260,6 @@ def _figures(out, arena, rec, keep, threshold: float, n_loc: int) -> None:
             figs["fig2a_sfa_units.png"] = plot_sfa_units(
                 arena, xy[te], lab, k["_Ysd"][te], [0, min(11, n_sfa - 1), min(23, n_sfa - 1)],
                 t=k["_aligned"][te])
-        for fname, fig in figs.items():
+        for fname, (fig, _) in figs.items():
             save_figure(fig, out / fname, dpi=110)
             plt.close(fig)

@@ -25,7 +25,8 @@ drive). ``reproduced_waits_s`` are the durations of the counted stops, ``max_rel
 worst relative difference from the learned wait.
 
 ``run.npz`` holds per-tick ``t, x, y, heading, speed, zone, sound, winner, drives, wait_drive,
-mode, prediction, non_occurrence, phase, trial`` and the teacher's events.
+mode, prediction, non_occurrence, phase, trial``, the names of the phases and modes
+(``phase_names``, ``mode_names``) and the teacher's events.
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ from __future__ import annotations
 import argparse
 import math
 import time
+from enum import IntEnum
 
 import numpy as np
 
@@ -40,11 +42,29 @@ from hippo.agent import Agent, AgentParams
 from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
-from hippo.scenarios.place_preference import STATES, Log, explore, make_places, run_agent
-from hippo.sim import World, arenas, wrap_angle
+from hippo.sim import World, arenas
+from hippo.tasks import (
+    PLACE_STATES,
+    LapCounter,
+    Log,
+    Route,
+    Session,
+    explore,
+    make_places,
+    passes,
+    stops,
+)
+from hippo.types import Mode, StateKind
 
-PHASES = ("exploration", "leash", "reproduction", "checkpoints", "patrol", "adaptation",
-          "kidnap")
+
+class Phase(IntEnum):
+    EXPLORATION = 0
+    LEASH = 1
+    REPRODUCTION = 2
+    CHECKPOINTS = 3
+    PATROL = 4
+    ADAPTATION = 5
+    KIDNAP = 6
 
 
 def _waits(text: str) -> list[float]:
@@ -70,22 +90,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="place prototypes read out from the ICA units (learned cells)")
 
 
-class Loop:
-    """Counts laps of the robot around the course (by the angle around its centre)."""
-
-    def __init__(self, centre: tuple[float, float]) -> None:
-        self.cx, self.cy = centre
-        self.angle = None
-        self.turns = 0.0
-
-    def update(self, x: float, y: float) -> float:
-        a = math.atan2(y - self.cy, x - self.cx)
-        if self.angle is not None:
-            self.turns += ((a - self.angle + math.pi) % (2 * math.pi) - math.pi) / (2 * math.pi)
-        self.angle = a
-        return self.turns
-
-
 def run(args: argparse.Namespace) -> dict:
     out = prepare_out(args.out)
     seed = int(args.seed)
@@ -103,69 +107,61 @@ def run(args: argparse.Namespace) -> dict:
     t0 = time.perf_counter()
     checkpoints = [arena.landmarks[f"checkpoint-{k}"] for k in (1, 2, 3)]
     names = [f"checkpoint-{k}" for k in (1, 2, 3)]
+    loop_route = Route(arenas.loop_waypoints())
 
     # 1. exploration: place cells only (HIREL learns the map on the leash)
-    ticks = round(explore_min * 60 / dt)
-    explored = explore(world, ticks, 0.0, seed, log, "exploration")
-    sensors = np.array([o.ir for o in explored])
+    tour = explore(world, round(explore_min * 60 / dt), 0.0, seed, log)
+    sensors = tour.sensors
     places = make_places(args.place_cells, arena, sensors, units, seed, args.places)
     places.prime(sensors[-500:])  # the robot's reservoir ran all along: continue from its state
     drive = DriveParams(epsilon=0.01, learning_rate=0.5)
-    params = AgentParams(states=STATES,
+    params = AgentParams(states=PLACE_STATES,
                          planner=PlannerParams(w=0.9, noise=0.0, exploration_threshold=0.05))
     agent = Agent(places, drives=dict.fromkeys(names, drive), params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)
-    obs = explored[-1]
-    loop = Loop((74.0, 56.0))
+    s = Session(world, agent, log, obs=tour[-1], phase=Phase.LEASH)
+    loop = LapCounter(loop_route)  # laps by progress along the taught route
+
+    def laps() -> float:
+        return loop.update(*s.truth.pose[:2])
 
     def lap_until(target: float):
-        def until(o) -> bool:
-            return loop.update(o.pose[0], o.pose[1]) >= target
-        return until
+        return lambda o: laps() >= target
+
+    def state_kind() -> StateKind | None:
+        return agent.kind(agent.state) if agent.state is not None else None
+
+    def near(point, radius: float) -> bool:
+        return math.dist(s.truth.pose[:2], point) < radius
 
     # let the place cells settle on the course before the leash
     agent.lifted()
-    obs = run_agent(world, agent, obs, int(agent.p.settle_time / dt) + 1, log, 1, 0)
+    s.run(int(agent.p.settle_time / dt) + 1)
 
-    # 2. one loop on the leash, counter-clockwise from the nearest waypoint
-    wp = arenas.loop_waypoints()[:-1]
-    i0 = int(np.argmin([math.hypot(x - obs.pose[0], y - obs.pose[1]) for x, y in wp]))
-    x, y, h = obs.pose
-    if math.cos(math.atan2(wp[i0][1] - y, wp[i0][0] - x) - h) < 0:
-        i0 = (i0 + 1) % len(wp)  # the nearest waypoint is behind: lead on, not back
-    route = wp[i0:] + wp[:i0] + [wp[i0]]
-    world.teacher.lead(route)
-    loop.update(*obs.pose[:2])
+    # 2. one loop on the leash, counter-clockwise from the nearest waypoint ahead
+    s.teacher.lead(loop_route.loop_from(s.truth.pose))
+    laps()
     with Progress(1, "leash") as bar:
-        obs = run_agent(world, agent, obs, 6000, log, 1, 0,
-                        until=lambda o: not world.teacher.leading)
+        s.run(6000, until=lambda o: not s.teacher.leading)
         bar.update()
 
     # 3. reproduction: no drive is active, the only known way on is the taught loop
     agent.drives.step(0.0)
-    start_turns = loop.update(*obs.pose[:2])
+    s.phase, start_turns = Phase.REPRODUCTION, laps()
     with Progress(1, "reproduction") as bar:
-        obs = run_agent(world, agent, obs, int(400 / dt), log, 2, 0,
-                        until=lap_until(start_turns + 1.0))
+        s.run(int(400 / dt), until=lap_until(start_turns + 1.0))
         reproduced = loop.turns - start_turns
         bar.update()
 
     # 4. checkpoints: block the robot at each checkpoint for its wait, reward its drive after
-    taught: list[dict] = []
+    s.phase = Phase.CHECKPOINTS
     with Progress(3, "checkpoints") as bar:
-        for k, (cx, cy) in enumerate(checkpoints):
-            obs = run_agent(world, agent, obs, int(300 / dt), log, 3, k,
-                            until=lambda o, cx=cx, cy=cy: math.hypot(o.pose[0] - cx,
-                                                                     o.pose[1] - cy) < 12.0)
-            world.teacher.block(waits[k])
-            tb = obs.t
-            obs = run_agent(world, agent, obs, int((waits[k] + 1) / dt), log, 3, k,
-                            until=lambda o: not world.teacher.blocking)
+        for k, c in enumerate(checkpoints):
+            s.trial = k
+            s.run(int(300 / dt), until=lambda o, c=c: near(c, 12.0))
+            s.block(waits[k])
             agent.reward(names[k])
-            obs = run_agent(world, agent, obs, int(10 / dt), log, 3, k,
-                            until=lambda o: agent.state is not None
-                            and agent.layer.key(agent.state).kind != "still")
-            taught.append({"block_s": waits[k], "block_t": tb})
+            s.run(int(10 / dt), until=lambda o: state_kind() not in (None, StateKind.STILL))
             bar.update()
 
     # 5. autonomous patrol (the learned delays are read before it: the patrol re-learns them)
@@ -176,102 +172,91 @@ def run(args: argparse.Namespace) -> dict:
         learned_delays[n] = float(np.median(delays)) if delays else None
     for d in names:
         agent.drives.set_level(d, 1.0)
-    start_turns = loop.update(*obs.pose[:2])
+    s.phase, start_turns = Phase.PATROL, laps()
     with Progress(loops, "patrol") as bar:
         for k in range(loops):
-            obs = run_agent(world, agent, obs, int(600 / dt), log, 4, k,
-                            until=lap_until(start_turns + k + 1.0))
+            s.trial = k
+            s.run(int(600 / dt), until=lap_until(start_turns + k + 1.0))
             bar.update()
     completed = loop.turns - start_turns
 
     # 6. adaptation: a longer block at checkpoint 1, an early leash restart at checkpoint 2
     adapt = {}
     longer = waits[0] + 8.0
-    (c1x, c1y), (c2x, c2y) = checkpoints[0], checkpoints[1]
+    c1, c2 = checkpoints[0], checkpoints[1]
     # the teacher holds the robot when it stops at checkpoint 1 by itself: its stillness
     # lasts `longer` s instead of the learned wait (if it passes without stopping, it is held
     # where the checkpoint was taught, as in teaching)
-    def at_c1(o) -> bool:
-        d = math.hypot(o.pose[0] - c1x, o.pose[1] - c1y)
-        still = agent.state is not None and agent.layer.key(agent.state).kind == "still"
-        return d < 30.0 and (still or agent.mode in ("approach", "wait") or d < 12.0)
-
-    obs = run_agent(world, agent, obs, int(400 / dt), log, 5, 0, until=at_c1)
-    if agent.mode == "approach":  # about to stop: let it
-        obs = run_agent(world, agent, obs, int(20 / dt), log, 5, 0,
-                        until=lambda o: agent.mode != "approach")
-    world.teacher.block(longer)
-    obs = run_agent(world, agent, obs, int((longer + 10) / dt), log, 5, 0,
-                    until=lambda o: not world.teacher.blocking)
-    obs = run_agent(world, agent, obs, int(400 / dt), log, 5, 1,
-                    until=lambda o: agent.state is not None
-                    and agent.layer.key(agent.state).kind == "still"
-                    and math.hypot(o.pose[0] - c2x, o.pose[1] - c2y) < 30.0)
+    s.phase, s.trial = Phase.ADAPTATION, 0
+    s.run(int(400 / dt), until=lambda o: near(c1, 30.0) and (
+        state_kind() == StateKind.STILL or agent.mode in (Mode.APPROACH, Mode.WAIT)
+        or near(c1, 12.0)))
+    if agent.mode == Mode.APPROACH:  # about to stop: let it
+        s.run(int(20 / dt), until=lambda o: agent.mode != Mode.APPROACH)
+    s.block(longer, extra=10.0)
+    s.trial = 1
+    s.run(int(400 / dt), until=lambda o: state_kind() == StateKind.STILL and near(c2, 30.0))
     shorter = waits[1] / 2
-    obs = run_agent(world, agent, obs, int(shorter / dt), log, 5, 1)
-    _, path = arena.shortest_path(obs.pose[:2], (c2x + 0.0, c2y + 30.0))
-    world.teacher.lead(path)
-    obs = run_agent(world, agent, obs, 2000, log, 5, 1, until=lambda o: not world.teacher.leading)
-    start_turns = loop.update(*obs.pose[:2])
-    i_adapt = len(log.cols["t"])
+    s.run(int(shorter / dt))
+    _, path = arena.shortest_path(s.truth.pose[:2], (c2[0] + 0.0, c2[1] + 30.0))
+    s.lead(path, limit=2000)
+    s.trial, start_turns = 2, laps()
+    i_adapt = len(log)
     # one loop and a bit: it starts just past checkpoint 2, which it must meet again
-    obs = run_agent(world, agent, obs, int(800 / dt), log, 5, 2,
-                    until=lap_until(start_turns + 1.25))
-    i_adapt_end = len(log.cols["t"])
+    s.run(int(800 / dt), until=lap_until(start_turns + 1.25))
+    i_adapt_end = len(log)
 
     # 7. kidnap: the robot is put down on the path two waypoints before the checkpoint whose
     # drive is lowest (it was served last), facing along the loop. Does it head on to a
     # checkpoint with a high drive instead of stopping at the one it was put before?
     levels = {n: agent.drives.level(n) for n in names}
     low = min(names, key=levels.get)
-    wp = arenas.loop_waypoints()[:-1]
-    cx, cy = checkpoints[names.index(low)]
-    i_cp = int(np.argmin([math.hypot(x - cx, y - cy) for x, y in wp]))
+    wp = loop_route.waypoints
+    i_cp = loop_route.nearest(*checkpoints[names.index(low)])
     (kx, ky), (nx, ny) = wp[(i_cp - 2) % len(wp)], wp[(i_cp - 1) % len(wp)]
-    heading = math.atan2(ny - ky, nx - kx)
-    world.place_robot(kx, ky, heading, event="kidnap")
-    agent.lifted(wrap_angle(heading - obs.pose[2]))
-    t_kid = obs.t
-    obs = run_agent(world, agent, obs, int(300 / dt), log, 6, 0,
-                    until=lambda o: agent.mode == "wait")
+    s.phase, s.trial = Phase.KIDNAP, 0
+    s.put(kx, ky, math.atan2(ny - ky, nx - kx))
+    t_kid = s.t
+    obs = s.run(int(300 / dt), until=lambda o: agent.mode == Mode.WAIT)
     kidnap_stop = None
-    if agent.mode == "wait":
-        d = [math.hypot(obs.pose[0] - x, obs.pose[1] - y) for x, y in checkpoints]
+    if agent.mode == Mode.WAIT:
+        d = [math.dist(s.truth.pose[:2], c) for c in checkpoints]
         served = agent.snapshot()["wait_drive"]
         kidnap_stop = {"nearest_checkpoint": names[int(np.argmin(d))],
                        "distance_cm": float(min(d)), "t_after_kidnap_s": float(obs.t - t_kid),
                        "drive": names[served] if served >= 0 else None}
-        obs = run_agent(world, agent, obs, int(5 / dt), log, 6, 0)
+        obs = s.run(int(5 / dt))
     wall = time.perf_counter() - t0
 
-    arrays = log.save(out, agent, world)
-    stops = _stops(arrays, checkpoints, world.robot.moving_threshold)
-    learned = [_longest_stop(stops, k, phase=3) for k in range(3)]
+    arrays = s.save(out, Phase)
+    all_stops = stops(arrays, checkpoints, world.robot.moving_threshold,
+                      taught_phase=Phase.CHECKPOINTS)
+    learned = [_longest_stop(all_stops, k, phase=Phase.CHECKPOINTS) for k in range(3)]
     rows = []
     for k in range(3):
         # at each pass by the checkpoint the first stop counts; further stops there are extra
-        passes = _passes(arrays, checkpoints[k], phase=4)
-        here = [s for s in stops if s["checkpoint"] == k and s["phase"] == 4]
+        runs = passes(arrays, checkpoints[k], phase=Phase.PATROL)
+        here = [st for st in all_stops if st["checkpoint"] == k and st["phase"] == Phase.PATROL]
         # a stop made here for another checkpoint's drive (a place that stands for both) is
         # a recognition error, reported apart from the timing of this checkpoint's waits
-        per_pass = [[s["duration"] for s in here if a <= s["i0"] < b and s["drive"] == k]
-                    for a, b in passes]
-        misplaced = sum(1 for s in here if s["drive"] != k)
+        per_pass = [[st["duration"] for st in here if a <= st["i0"] < b and st["drive"] == k]
+                    for a, b in runs]
+        misplaced = sum(1 for st in here if st["drive"] != k)
         rep = [d[0] for d in per_pass if d]
         learned_wait = learned_delays[names[k]]
         err = [abs(r - learned_wait) / learned_wait for r in rep] if learned_wait else []
         rows.append({"checkpoint": names[k], "taught_block_s": waits[k],
                      "taught_stop_s": learned[k]["duration"] if learned[k] else None,
                      "learned_wait_s": learned_wait, "reproduced_waits_s": rep,
-                     "passes": len(passes), "stops_made": len(rep),
+                     "passes": len(runs), "stops_made": len(rep),
                      "extra_stops": sum(max(len(d) - 1, 0) for d in per_pass),
                      "misplaced_stops": misplaced,
                      "mean_s": float(np.mean(rep)) if rep else None,
                      "sd_s": float(np.std(rep)) if rep else None,
                      "max_rel_error": float(max(err)) if err else None})
-    adapt_stops = [s for s in stops if i_adapt <= s["i0"] < i_adapt_end]
+    adapt_stops = [st for st in all_stops if i_adapt <= st["i0"] < i_adapt_end]
     for k, key, taught_s in ((0, "longer_block", longer), (1, "leash_restart", shorter)):
-        after = [s["duration"] for s in adapt_stops if s["checkpoint"] == k]
+        after = [st["duration"] for st in adapt_stops if st["checkpoint"] == k]
         adapt[key] = {"before_s": rows[k]["mean_s"], "taught_s": taught_s,
                       "after_s": after[0] if after else None}
     metrics = {
@@ -307,59 +292,6 @@ def run(args: argparse.Namespace) -> dict:
         f"{metrics['checkpoint_stops_made']} of {metrics['checkpoint_stops_expected']} "
         f"checkpoint passes; {waits}"))
     return metrics
-
-
-def _stops(arrays: dict, checkpoints: list, threshold: float) -> list[dict]:
-    """Every stretch of >= 1 s without translation near a checkpoint (< 30 cm).
-
-    In the teaching phase (3) any such stop counts (the teacher's block); elsewhere only stops
-    the agent chose (it was in its "wait" mode), not stalls at walls.
-    """
-    still = arrays["speed"] <= threshold
-    waiting = arrays["mode"] == 3
-    out = []
-    i, n = 0, len(still)
-    while i < n:
-        if not still[i]:
-            i += 1
-            continue
-        j = i
-        while j < n and still[j]:
-            j += 1
-        dur = float(arrays["t"][j - 1] - arrays["t"][i] + (arrays["t"][1] - arrays["t"][0]))
-        x, y = arrays["x"][i], arrays["y"][i]
-        d = [math.hypot(x - cx, y - cy) for cx, cy in checkpoints]
-        k = int(np.argmin(d))
-        phase = int(arrays["phase"][i])
-        if phase == 3:
-            k = int(arrays["trial"][i])
-        chosen = phase == 3 or bool(np.any(waiting[i:j]))
-        if dur >= 1.0 and d[k] < 30.0 and chosen:
-            drives = arrays["wait_drive"][i:j]
-            drives = drives[drives >= 0]
-            drive = int(np.bincount(drives).argmax()) if drives.size else -1
-            out.append({"i0": i, "duration": dur, "checkpoint": k, "phase": phase,
-                        "trial": int(arrays["trial"][i]), "drive": drive})
-        i = j
-    return out
-
-
-def _passes(arrays: dict, centre: tuple[float, float], *, phase: int, radius: float = 30.0,
-            gap: int = 25) -> list[tuple[int, int]]:
-    """Index ranges ``[a, b)`` of the passes by ``centre`` (within ``radius`` cm) during
-    ``phase``; runs at most ``gap`` ticks apart are one pass, and a pass under way when the
-    phase starts (the robot is still where the previous phase left it) does not count."""
-    idx = np.flatnonzero(arrays["phase"] == phase)
-    if idx.size == 0:
-        return []
-    near = np.hypot(arrays["x"][idx] - centre[0], arrays["y"][idx] - centre[1]) < radius
-    runs: list[list[int]] = []
-    for i in idx[near]:
-        if runs and i - runs[-1][1] <= gap:
-            runs[-1][1] = int(i) + 1
-        else:
-            runs.append([int(i), int(i) + 1])
-    return [(a, b) for a, b in runs if a != idx[0]]
 
 
 def _longest_stop(stops: list[dict], k: int, *, phase: int) -> dict | None:

@@ -15,8 +15,8 @@ Phases (each with a progress bar):
    drive and the robot resumes exploring.
 
 ``run.npz`` holds per-tick ``t, x, y, heading, speed, zone, sound, winner, drives, mode,
-prediction, non_occurrence, sound_prediction, sound_non_occurrence, phase, trial`` and the
-teacher's events.
+prediction, non_occurrence, sound_prediction, sound_non_occurrence, phase, trial``, the names
+of the phases and modes (``phase_names``, ``mode_names``) and the teacher's events.
 """
 
 from __future__ import annotations
@@ -24,25 +24,33 @@ from __future__ import annotations
 import argparse
 import math
 import time
-from dataclasses import dataclass, field
-from pathlib import Path
+from enum import IntEnum
 
 import numpy as np
 
-from hippo.agent import Agent, AgentParams, GroundTruthPlaceCells, LearnedPlaceCells
+from hippo.agent import Agent, AgentParams
 from hippo.cognitive_map import DriveParams, PlannerParams
-from hippo.io import save_npz
-from hippo.perception.place_cells import RCSFAICA
-from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
-from hippo.perception.states import StateLayerParams
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
-from hippo.sim import WallFollower, WallFollowerParams, World, arenas, wrap_angle
-from hippo.sim.arena import Arena
+from hippo.sim import World, arenas
+from hippo.tasks import (
+    PLACE_STATES,
+    Experimenter,
+    Log,
+    Session,
+    explore,
+    learn_map,
+    make_places,
+)
 
-PHASES = ("exploration", "teaching", "rewarded", "extinction")
-#: probability per exploration tick of a pause (2-30 s): about one pause a minute
-PAUSE_RATE = 0.003
+
+class Phase(IntEnum):
+    EXPLORATION = 0
+    TEACHING = 1
+    REWARDED = 2
+    EXTINCTION = 3
+
+
 START_NAMES = ("south", "east", "north", "west")
 #: counter-clockwise along each corridor: the way the wall follower explored goal_arena()
 START_HEADINGS = {"south": 0.0, "east": math.pi / 2, "north": math.pi, "west": -math.pi / 2}
@@ -68,166 +76,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "heading it had when picked up")
 
 
-@dataclass
-class Log:
-    """Per-tick arrays of the whole run (``n_drives`` columns of drive levels)."""
-
-    n_drives: int = 1
-    cols: dict[str, list] = field(default_factory=lambda: {k: [] for k in (
-        "t", "x", "y", "heading", "speed", "zone", "sound", "winner", "mode", "prediction",
-        "non_occurrence", "sound_prediction", "sound_non_occurrence", "phase", "trial",
-        "drives", "wait_drive")})
-
-    def add(self, obs, agent: Agent | None, phase: int, trial: int) -> None:
-        c = self.cols
-        x, y, h = obs.pose
-        c["t"].append(obs.t)
-        c["x"].append(x)
-        c["y"].append(y)
-        c["heading"].append(h)
-        c["speed"].append(obs.speed)
-        c["zone"].append(obs.floor)
-        c["sound"].append(obs.sound)
-        c["phase"].append(phase)
-        c["trial"].append(trial)
-        if agent is None:
-            c["winner"].append(-1)
-            c["mode"].append(0)
-            c["prediction"].append(0.0)
-            c["non_occurrence"].append(False)
-            c["sound_prediction"].append(0.0)
-            c["sound_non_occurrence"].append(False)
-            c["drives"].append([0.0] * self.n_drives)
-            c["wait_drive"].append(-1)
-        else:
-            s = agent.snapshot()
-            for k in ("winner", "mode", "prediction", "non_occurrence", "sound_prediction",
-                      "sound_non_occurrence", "drives", "wait_drive"):
-                c[k].append(s[k])
-
-    def arrays(self) -> dict[str, np.ndarray]:
-        return {k: np.asarray(v) for k, v in self.cols.items()}
-
-    def save(self, out: Path, agent: Agent, world: World) -> dict[str, np.ndarray]:
-        """Write ``out/run.npz`` (per-tick arrays and the teacher's events) and
-        ``out/map.graphml``; returns the arrays."""
-        arrays = self.arrays()
-        ev = world.events
-        save_npz(out / "run.npz", {**arrays, "drive_names": np.array(agent.drives.names),
-                                   "event_t": np.array([e[0] for e in ev], float),
-                                   "event_kind": np.array([e[1] for e in ev], dtype="<U16"),
-                                   "event_detail": np.array([e[2] for e in ev], dtype="<U64")})
-        agent.graph.to_graphml(out / "map.graphml")
-        return arrays
-
-
-def explore(world: World, ticks: int, rho: float, seed: int, log: Log, desc: str,
-            pause_rate: float = PAUSE_RATE) -> list:
-    """Drive the robot with the wall follower, pausing now and then; return the observations.
-
-    With probability ``pause_rate`` per tick the robot stands still for 2-30 s (uniform). A
-    robot that will wait at goals and checkpoints must have stood still while it learned its
-    place cells: the slow features then treat a stop as part of the place, not as a new
-    input (without pauses, a wait left the learned places off for the next minute)."""
-    ctrl = WallFollower(WallFollowerParams(rho=rho), sensors=world.sensors, robot=world.robot,
-                        rng=np.random.default_rng([seed, 3]))
-    rng = np.random.default_rng([seed, 4])
-    obs = world._observe(np.zeros(3), 0.0, False)
-    out = []
-    pause = 0
-    with Progress(ticks, desc) as bar:
-        for _ in range(ticks):
-            if pause > 0:
-                pause -= 1
-                obs = world.step((0.0, 0.0))
-            else:
-                if pause_rate > 0 and rng.random() < pause_rate:
-                    pause = int(rng.uniform(2.0, 30.0) / world.dt)
-                obs = world.step(ctrl.act(obs))
-            out.append(obs)
-            log.add(obs, None, 0, -1)
-            bar.update()
-    return out
-
-
-def learn_map(agent: Agent, explored: list, desc: str = "map learning") -> None:
-    """Replay the exploration through ``agent``: it learns its states, their timed transitions
-    and the cognitive map from the robot's own run.
-
-    The exploration's pauses are left out (ticks where the robot neither moved nor turned):
-    they train the place cells on standing still, but a stop made for no reason is no event of
-    the task. Replayed, every pause would leave a wait in the map for the planner to route
-    through (measured: with --delay 3.3 the robot then stopped on its way at pause places and
-    reached the goal in 52 of 60 rewarded trials instead of 60)."""
-    with Progress(len(explored), desc) as bar:
-        for o in explored:
-            if o.moving or np.any(o.odometry):
-                agent.step(o)
-            bar.update()
-
-
-def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: int,
-                n_places: int = 32):
-    """The place-cell source: RC-SFA-ICA fitted on the exploration (``units`` ICA units read
-    out by ``n_places`` radial-basis prototypes over the ICA population vector), or ground
-    truth (Gaussian fields at the arena's labelled locations).
-
-    The reservoir is faster than SMC09's room detector (leaks 0.1 / 0.3 and spectral radius
-    0.9 instead of 0.05 / 0.15 and 0.99): its slowest mode then forgets in about 20 s instead
-    of several minutes, so what the closed loop does to the sensors (a leash off the explored
-    line, a block, a wait) fades within a corridor. Measured over seeds 0-9: the patrol stops
-    at 87 % of checkpoint passes instead of 74 %, place preference succeeds in 119 of 120
-    rewarded trials instead of 116.
-    """
-    if kind == "ground-truth":
-        return GroundTruthPlaceCells(arena.locations, sigma=8.0)
-    model = RCSFAICA(n_reservoir=400, leak=(0.1, 0.3), spectral_radius=0.9, n_sfa=units,
-                     n_ica=units, ica_restarts=3, seed=seed)
-    Y = model.fit_transform(sensors)
-    protos = PlacePrototypes(PrototypeParams(n_prototypes=n_places, seed=seed)).fit(Y)
-    model.reset_state()
-    return LearnedPlaceCells(model, protos)
-
-
-#: state-layer settings for place activities in [0, 1] (prototypes, Gaussian fields)
-STATES = StateLayerParams(normalize="fixed", place_scale=0.5, context_time=1.0)
-
-
-def run_agent(world: World, agent: Agent, obs, ticks: int, log: Log, phase: int, trial: int,
-              until=None, bar: Progress | None = None):
-    """Step the closed loop for up to ``ticks`` ticks (or until ``until(obs)`` is true)."""
-    for _ in range(ticks):
-        obs = world.step(agent.step(obs))
-        log.add(obs, agent, phase, trial)
-        if bar is not None:
-            bar.update()
-        if until is not None and until(obs):
-            break
-    return obs
-
-
-class Experimenter:
-    """Plays the sound once the robot has been still in the goal zone for ``delay`` s."""
-
-    def __init__(self, world: World, delay: float, colour: int = 1) -> None:
-        self.world, self.delay, self.colour = world, delay, colour
-        self.still_since: float | None = None
-        self.rewarding = True
-        self.sounded = False
-
-    def __call__(self, obs) -> bool:
-        still = obs.floor == self.colour and not obs.moving
-        if still and self.still_since is None:
-            self.still_since = obs.t
-        elif not still:
-            self.still_since = None
-        if (self.rewarding and not self.sounded and self.still_since is not None
-                and obs.t - self.still_since >= self.delay - 1e-9):
-            self.world.teacher.sound()
-            self.sounded = True
-        return False
-
-
 def run(args: argparse.Namespace) -> dict:
     out = prepare_out(args.out)
     seed = int(args.seed)
@@ -242,41 +90,38 @@ def run(args: argparse.Namespace) -> dict:
     arena = arenas.goal_arena()
     world = World(arena, sensors="ir8", seed=seed)
     dt = world.dt
-    log = Log()
     t0 = time.perf_counter()
 
     # 1. exploration: place cells from the robot's own sensors, then the map
-    ticks = round(explore_min * 60 / dt)
-    explored = explore(world, ticks, args.explore_rho, seed, log, "exploration")
-    places = make_places(args.place_cells, arena, np.array([o.ir for o in explored]), units, seed,
-                         args.places)
+    log = Log()
+    tour = explore(world, round(explore_min * 60 / dt), args.explore_rho, seed, log)
+    places = make_places(args.place_cells, arena, tour.sensors, units, seed, args.places)
     fit_s = time.perf_counter() - t0
     drive = DriveParams(epsilon=0.02, learning_rate=0.5)
-    params = AgentParams(states=STATES, explore_rho=args.explore_rho,
+    params = AgentParams(states=PLACE_STATES, explore_rho=args.explore_rho,
                          planner=PlannerParams(w=0.9, noise=0.01, exploration_threshold=0.3))
     agent = Agent(places, drives={"sound": drive}, params=params, sensors=world.sensors,
                   robot=world.robot, seed=seed)
-    learn_map(agent, explored)
-    obs = explored[-1]
+    learn_map(agent, tour)
+    s = Session(world, agent, log, obs=tour[-1])
 
     # 2. teaching: leash to the goal, block, sound after the delay
     goal = arena.landmarks["goal"]
     zone = arena.zones[0].rect
-    exp = Experimenter(world, args.delay)
+    exp = Experimenter(s.teacher, args.delay)
+    s.phase = Phase.TEACHING
     with Progress(n_teach, "teaching") as bar:
         for k in range(n_teach):
+            s.trial = k
             # start each guided trial from outside the zone, so entering it is an event
-            obs = run_agent(world, agent, obs, int(120 / dt), log, 1, k,
-                            until=lambda o: o.floor == 0)
-            _, path = arena.shortest_path(obs.pose[:2], goal)
-            world.teacher.lead(path)
-            exp.sounded, exp.still_since = False, None
-            obs = run_agent(world, agent, obs, 3000, log, 1, k,
-                            until=lambda o: not world.teacher.leading)
-            world.teacher.block(args.delay + 2.0)
-            obs = run_agent(world, agent, obs, int((args.delay + 2.0) / dt) + 5, log, 1, k,
-                            until=exp)
-            obs = run_agent(world, agent, obs, int(30 / dt), log, 1, k)  # explore again
+            s.run(int(120 / dt), until=lambda o: o.floor == 0)
+            _, path = arena.shortest_path(s.truth.pose[:2], goal)
+            s.teacher.lead(path)
+            exp.reset()
+            s.run(3000, until=lambda o: not s.teacher.leading)
+            s.teacher.block(args.delay + 2.0)
+            s.run(int((args.delay + 2.0) / dt) + 5, until=exp)
+            s.run(int(30 / dt))  # explore again
             bar.update()
 
     # 3-4. rewarded and extinction trials from varied start places
@@ -285,19 +130,18 @@ def run(args: argparse.Namespace) -> dict:
     with Progress(n_total, "trials") as bar:
         for k in range(n_total):
             rewarded = k < n_trials
-            phase = 2 if rewarded else 3
+            s.phase, s.trial = (Phase.REWARDED if rewarded else Phase.EXTINCTION), k
             name = START_NAMES[k % len(START_NAMES)]
             sx, sy = arena.landmarks[f"start-{name}"]
-            heading = START_HEADINGS[name] if args.start_facing == "explored" else obs.pose[2]
-            world.place_robot(sx, sy, heading, event="trial_start")
-            agent.lifted(heading_change=wrap_angle(heading - obs.pose[2]))
+            heading = (START_HEADINGS[name] if args.start_facing == "explored"
+                       else s.truth.pose[2])
+            s.put(sx, sy, heading, event="trial_start")
             agent.drives.set_level("sound", max(agent.drives.level("sound"), 0.6))
-            exp.rewarding, exp.sounded, exp.still_since = rewarded, False, None
-            obs = world.step((0.0, 0.0))
-            i0 = len(log.cols["t"])
-            shortest = arena.geodesic_distance((sx, sy), zone)
-            limit = int(args.trial_timeout / dt)
-            rec = {"rewarded": rewarded, "start": [sx, sy], "shortest_cm": shortest}
+            exp.reset(rewarding=rewarded)
+            s.obs = world.step((0.0, 0.0))
+            i0 = len(s.log)
+            rec = {"rewarded": rewarded, "start": [sx, sy],
+                   "shortest_cm": arena.geodesic_distance((sx, sy), zone)}
 
             def done(o, rec=rec, rewarded=rewarded) -> bool:
                 exp(o)
@@ -313,11 +157,8 @@ def run(args: argparse.Namespace) -> dict:
                 return rec.get("still_s", 0.0) >= 2.0 and (
                     (o.moving and o.floor != 1) or o.t - rec["still_t"] > 60.0)
 
-            obs = run_agent(world, agent, obs, limit, log, phase, k, until=done)
-            i1 = len(log.cols["t"])
-            xs = np.array(log.cols["x"][i0:i1])
-            ys = np.array(log.cols["y"][i0:i1])
-            ts = np.array(log.cols["t"][i0:i1])
+            obs = s.run(int(args.trial_timeout / dt), until=done)
+            xs, ys, ts = (s.log.column(c, i0) for c in ("x", "y", "t"))
             if "entered_t" in rec:
                 m = ts <= rec["entered_t"]
                 rec["path_cm"] = float(np.sum(np.hypot(np.diff(xs[m]), np.diff(ys[m]))))
@@ -333,7 +174,7 @@ def run(args: argparse.Namespace) -> dict:
             else:
                 rec.pop("still_s", None)
             results.append(rec)
-            obs = run_agent(world, agent, obs, int(20 / dt), log, phase, k)
+            obs = s.run(int(20 / dt))
             bar.update()
 
     wall = time.perf_counter() - t0
@@ -362,7 +203,7 @@ def run(args: argparse.Namespace) -> dict:
         "realtime_factor": float(obs.t) / wall,
         "trials": results,
     }
-    arrays = log.save(out, agent, world)
+    arrays = s.save(out, Phase)
     from hippo.plots.agent import plot_place_preference
 
     plot_place_preference(out, arena, agent, arrays, results, args.delay)

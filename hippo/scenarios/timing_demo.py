@@ -1,8 +1,9 @@
 """Timing demo: HIREL Fig. 6 without the robot — timed predictions, rewards and extinction.
 
-A symbolic place-preference task runs through the whole sensory-event pipeline
-(:class:`~hippo.perception.states.StateLayer` -> :class:`~hippo.timing.SpectralTiming` ->
-:class:`~hippo.timing.TransitionCells` -> :class:`~hippo.timing.NonOccurrence`): noisy place
+A symbolic place-preference task runs through the brain's neural chain
+(:meth:`hippo.brain.Brain.perceive`: :class:`~hippo.perception.states.StateLayer` ->
+:class:`~hippo.timing.SpectralTiming` -> :class:`~hippo.timing.TransitionCells` ->
+:class:`~hippo.timing.NonOccurrence`, fed place activities directly): noisy place
 cells, a coloured goal zone, the robot stopping there ("still" wins), and the reward sound
 ``--delay`` seconds later. After ``--pairings`` rewarded trials, one more rewarded trial and one
 extinction trial (no sound; the robot resumes when the non-occurrence neuron fires) give
@@ -25,13 +26,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
+from hippo.brain import Brain, BrainParams
 from hippo.io import save_npz
-from hippo.perception.states import StateLayer
 from hippo.plots.timing import plot_fig6, plot_reproduction
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
-from hippo.timing import NonOccurrence, SpectralTiming, TransitionCells
+from hippo.timing import TransitionParams
+from hippo.timing.chain import TimingChain
 from hippo.timing.trials import TrialTrace, reproduce, run_trial
+from hippo.types import StateKind
 
 DT = 0.2
 GOAL_COLOUR = 2
@@ -61,18 +64,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 class _Pipeline:
-    """State layer -> spectral timing -> transition cells -> non-occurrence, one tick a call."""
+    """The brain's neural chain fed symbolic place activities, one tick a call."""
 
     def __init__(self) -> None:
-        self.layer = StateLayer()
-        self.timing = SpectralTiming()
-        self.cells = TransitionCells(self.timing)
-        self.nonocc = NonOccurrence()
+        # the transition cells' default latency (no motor loop to compensate here)
+        self.brain = Brain(params=BrainParams(transitions=TransitionParams()))
+        self.layer, self.cells = self.brain.layer, self.brain.cells
 
     def tick(self, place: np.ndarray, colour: int, sound: bool, moving: bool, dt: float):
-        ev = self.layer.step(place, colour=colour, sound=sound, moving=moving, dt=dt)
-        readouts = self.cells.step(self.timing.step(ev.winner, dt), dt)
-        return ev, readouts, self.nonocc.step(readouts, dt)
+        seen = self.brain.perceive(place, colour=colour, sound=sound, moving=moving, dt=dt)
+        return seen.event, seen.timing.readouts, seen.timing.omitted
 
 
 def _place_preference_trial(pipe: _Pipeline, rng: np.random.Generator, delay: float,
@@ -113,7 +114,7 @@ def _place_preference_trial(pipe: _Pipeline, rng: np.random.Generator, delay: fl
             fired.append(tau)
             resume = True  # the agent inhibits the drive: the robot moves on at the next tick
         r = next((ro for (_, b), ro in readouts.items()
-                  if pipe.layer.key(b).kind == "sound"), None)
+                  if pipe.layer.key(b).kind == StateKind.SOUND), None)
         taus.append(tau)
         preds.append(0.0 if r is None else r.prediction)
         overs.append(bool(r is not None and r.delay_over))
@@ -152,7 +153,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     rewarded = _place_preference_trial(pipe, rng, args.delay, True, args.noise, args.jitter)
     extinction = _place_preference_trial(pipe, rng, args.delay, False, args.noise, args.jitter)
     cells, layer = pipe.cells, pipe.layer
-    reward_keys = [k for k in cells.transitions if layer.key(k[1]).kind == "sound"]
+    reward_keys = [k for k in cells.transitions if layer.key(k[1]).kind == StateKind.SOUND]
     learned = {layer.describe(a) + " -> " + layer.describe(b): round(cells.learned_delay((a, b)), 3)
                for a, b in cells.transitions}
 
@@ -160,12 +161,12 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     by_delay: dict[float, TrialTrace] = {}
     per_delay: dict[str, dict[str, float]] = {}
     for i, d in enumerate(delays):
-        timing = SpectralTiming()
-        tc = TransitionCells(timing)
+        chain = TimingChain()
+        tc = chain.cells
         r = np.random.default_rng([args.seed, i])
         for _ in range(pairings):
-            run_trial(timing, tc, 0, 1, d, dt=DT, jitter=args.jitter, rng=r, other=2)
-        probe = run_trial(timing, tc, 0, 1, None, dt=DT, jitter=0.0, t_max=2.0 * d, other=2)
+            run_trial(chain, 0, 1, d, dt=DT, jitter=args.jitter, rng=r, other=2)
+        probe = run_trial(chain, 0, 1, None, dt=DT, jitter=0.0, t_max=2.0 * d, other=2)
         by_delay[d] = probe
         fine = np.linspace(0.01, 2.5 * d, 5001)
         over = np.flatnonzero(probe.delay_over)
@@ -196,11 +197,11 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
                                     "max_abs_error_pct": float(np.nanmax(np.abs(err))),
                                     "non_occurrence_after_s": float(np.nanmean(lags))}
 
-    fig = plot_fig6(rewarded, extinction, args.delay, by_delay,
+    fig, _ = plot_fig6(rewarded, extinction, args.delay, by_delay,
                     title=f"Timed prediction of the reward (learned delay {args.delay:g} s)")
     fig.savefig(Path(out) / "fig6_timing.png", dpi=110)
     plt.close(fig)
-    fig = plot_reproduction(delays, waits_all,
+    fig, _ = plot_reproduction(delays, waits_all,
                             reference={k: v for k, v in HIREL_TABLE1.items()},
                             title="Learned vs reproduced waits (closed loop)")
     fig.savefig(Path(out) / "reproduction.png", dpi=110)

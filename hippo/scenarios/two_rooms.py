@@ -388,6 +388,6 @@ def _figures(out, arena, rec, rec_kid, n_train, events, keep, leak) -> None:
         title=f"corridor cell (ICA unit {k + 1}), leaks 0.11/0.14: balanced accuracy "
               f"{c['corridor_cell_test_balanced_accuracy']:.3f}",
         truth=_room_masks(rec)["corridor"][te], truth_label="in corridor")
-    for name, fig in figs.items():
+    for name, (fig, _) in figs.items():
         save_figure(fig, out / name, dpi=110)
         plt.close(fig)

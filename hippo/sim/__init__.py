@@ -24,10 +24,11 @@ from hippo.sim.odometry import PathIntegrator
 from hippo.sim.record import Recording, record
 from hippo.sim.robot import IR8, RAY17, RobotParams, SensorModel
 from hippo.sim.teacher import Teacher
-from hippo.sim.world import Observation, World, wrap_angle
+from hippo.sim.world import GroundTruth, Intervention, Observation, World, wrap_angle
 
 __all__ = [
-    "IR8", "RAY17", "Arena", "ArenaBuilder", "AvoidanceParams", "GoToHeading", "Observation",
+    "IR8", "RAY17", "Arena", "ArenaBuilder", "AvoidanceParams", "GoToHeading", "GroundTruth",
+    "Intervention", "Observation",
     "ObstacleAvoidance", "PathIntegrator", "Recording", "Region", "RobotParams", "SensorModel",
     "Stop", "Teacher", "WallFollower", "WallFollowerParams", "World", "Zone", "arenas", "record",
     "wrap_angle",

@@ -14,7 +14,7 @@ import numpy as np
 
 from hippo._checks import check_fields, check_range
 from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
-from hippo.sim.world import Observation, wrap_angle
+from hippo.types import Observation, wrap_angle
 
 
 class _SensorGeometry:

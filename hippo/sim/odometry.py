@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from hippo._checks import check_finite
+from hippo.types import wrap_angle
 
 
 class PathIntegrator:
@@ -32,5 +33,5 @@ class PathIntegrator:
         c, s = math.cos(self.heading), math.sin(self.heading)
         self.x += c * dx - s * dy
         self.y += s * dx + c * dy
-        self.heading = (self.heading + dth + math.pi) % (2 * math.pi) - math.pi
+        self.heading = wrap_angle(self.heading + dth)
         return self.pose

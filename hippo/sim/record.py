@@ -2,12 +2,11 @@
 
 A :class:`Recording` holds per-tick arrays (time, sensor matrix, pose, speed, floor colour,
 nearest labelled location, region) and the event log, and round-trips through ``.npz``.
+The command ``hippo record`` lives in :mod:`hippo.cli` (it also draws figures).
 """
 
 from __future__ import annotations
 
-import argparse
-import sys
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields
 from pathlib import Path
@@ -15,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from hippo._checks import check_array, check_positive
-from hippo.io import CorruptFileError, load_npz, save_figure, save_npz
+from hippo.io import CorruptFileError, load_npz, save_npz
 from hippo.progress import Progress
 from hippo.sim import arenas as arena_registry
 from hippo.sim.arena import Arena
@@ -165,15 +164,16 @@ def record(arena: Arena | str, ticks: int, *, seed: int = 0, rho: float = 0.008,
     S = np.empty((ticks, n))
     P = np.empty((ticks, 5))
     floor = np.empty(ticks, dtype=np.int16)
-    obs = world._observe(np.zeros(3), 0.0, False)
+    obs = world.observe()
     with Progress(ticks, desc, enabled=None if progress else False) as bar:
         for k in range(ticks):
             if k in kid:
                 world.place_robot(*kid[k])
-                obs = world._observe(np.zeros(3), 0.0, False)
+                obs = world.observe()
             obs = world.step(controller.act(obs))
+            truth = world.truth
             S[k] = obs.ir
-            P[k] = (obs.t, *obs.pose, obs.speed)
+            P[k] = (obs.t, *truth.pose, truth.speed)
             floor[k] = obs.floor
             if k % 1000 == 999:
                 bar.update(1000)
@@ -190,32 +190,3 @@ def record(arena: Arena | str, ticks: int, *, seed: int = 0, rho: float = 0.008,
         event_t=np.array([e[0] for e in ev], float),
         event_kind=np.array([e[1] for e in ev], dtype="<U16"),
         event_detail=np.array([e[2] for e in ev], dtype="<U64"))
-
-
-def record_main(argv: Sequence[str]) -> int:
-    """``hippo record ARENA --ticks N --rho R --sensors ir8 --seed S --out run.npz``."""
-    p = argparse.ArgumentParser(prog="hippo record",
-                                description="Record a wall-following run to .npz")
-    p.add_argument("arena", help=f"one of: {', '.join(arena_registry.ARENAS)}")
-    p.add_argument("--ticks", type=int, default=18120)
-    p.add_argument("--rho", type=float, default=0.008)
-    p.add_argument("--sensors", default="ir8", choices=["ir8", "ray17"])
-    p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--out", default="run.npz")
-    p.add_argument("--figure", action="store_true", help="also write a trajectory PNG")
-    a = p.parse_args(list(argv))
-    try:
-        arena = arena_registry.get(a.arena)
-    except ValueError as exc:
-        p.error(str(exc))
-    rec = record(arena, a.ticks, seed=a.seed, rho=a.rho, sensors=a.sensors)
-    path = rec.save(a.out)
-    print(f"wrote {len(rec)} ticks to {path}", file=sys.stderr)
-    if a.figure:
-        from hippo.plots.sim import plot_trajectory
-
-        fig = plot_trajectory(arena, rec)
-        png = Path(a.out).with_suffix(".png")
-        save_figure(fig, png, dpi=120)
-        print(f"wrote {png}", file=sys.stderr)
-    return 0

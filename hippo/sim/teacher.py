@@ -8,7 +8,9 @@
   it, and the ring is removed after ``duration`` seconds.
 - :meth:`Teacher.sound` plays the reward sound (the next observation has ``sound=True``).
 
-Every action is logged in ``world.events`` as ``(t, kind, detail)``.
+Every action is logged in ``world.events`` as ``(t, kind, detail)``. The teacher acts on the
+world from outside: ``Teacher(world)`` attaches itself (:meth:`World.attach`) and reads the
+world's ground truth; the world does not know it.
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from hippo._checks import check_finite, check_positive
+from hippo.types import wrap_angle
 
 if TYPE_CHECKING:
     from hippo.sim.world import Obstacle, World
@@ -32,6 +35,7 @@ class Teacher:
         self.lead_speed = lead_speed
         self.tolerance = tolerance
         self.reset()
+        world.attach(self)
 
     def reset(self) -> None:
         self._waypoints: list[tuple[float, float]] = []
@@ -88,7 +92,7 @@ class Teacher:
         """Play the reward sound."""
         self.world.emit_sound()
 
-    # -- called by World.step -----------------------------------------------------------------
+    # -- called by World.step (the Intervention protocol) ---------------------------------
     def override(self, left: float, right: float) -> tuple[float, float]:
         """The wheel command while the leash is on (pure pursuit of the next waypoint)."""
         if not self._waypoints:
@@ -104,7 +108,7 @@ class Teacher:
             w.events.append((w.t, "lead_end", ""))
             return 0.0, 0.0
         tx, ty = self._waypoints[0]
-        err = (math.atan2(ty - y, tx - x) - h + math.pi) % (2 * math.pi) - math.pi
+        err = wrap_angle(math.atan2(ty - y, tx - x) - h)
         vmax = self._speed or self.lead_speed or w.robot.speed_max
         v = vmax * max(0.0, math.cos(err)) ** 2
         omega = max(-3.0, min(3.0, 3.0 * err))

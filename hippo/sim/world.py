@@ -1,16 +1,22 @@
 """The simulated world: a pymunk space with the arena's walls, floor zones, obstacles and a robot.
 
 ``World.step(action)`` advances one control period ``dt`` (default 0.2 s, the e-puck's
-sense-act cycle) in ``substeps`` physics steps and returns an :class:`Observation`. Units are
-centimetres, seconds and radians. ``reset(seed)`` rebuilds the pymunk space from scratch (pymunk
-keeps contact state between steps, so moving the robot back is not a reset).
+sense-act cycle) in ``substeps`` physics steps and returns an :class:`~hippo.types.Observation`
+(what the robot senses, nothing more); ``World.truth`` is the matching
+:class:`~hippo.types.GroundTruth` (pose, speed) for analysis, recordings and the teacher. Units
+are centimetres, seconds and radians. ``reset(seed)`` rebuilds the pymunk space from scratch
+(pymunk keeps contact state between steps, so moving the robot back is not a reset).
+
+Something outside the robot that acts on the world every tick (the teacher of
+:mod:`hippo.sim.teacher`) is an :class:`Intervention`: it attaches itself with
+:meth:`World.attach`; the world knows only that protocol, not the teacher.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import Any, Protocol
 
 import numpy as np
 import pymunk
@@ -18,41 +24,25 @@ import pymunk
 from hippo._checks import check_positive
 from hippo.sim.arena import Arena
 from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
+from hippo.types import GroundTruth, Observation, wrap_angle
 
-if TYPE_CHECKING:
-    from hippo.sim.teacher import Teacher
+__all__ = ["GroundTruth", "Intervention", "Observation", "Obstacle", "World", "wrap_angle"]
 
 _CAT_ROBOT, _CAT_WALL, _CAT_OBSTACLE = 0b001, 0b010, 0b100
 _RAY_FILTER = pymunk.ShapeFilter(mask=_CAT_WALL | _CAT_OBSTACLE)
 
 
-def wrap_angle(a: float) -> float:
-    """Wrap an angle to (-π, π]."""
-    return (a + math.pi) % (2 * math.pi) - math.pi
+class Intervention(Protocol):
+    """Acts on the world from outside the robot each tick (the teacher's leash and block)."""
 
+    @property
+    def active(self) -> bool: ...
 
-class Observation:
-    """What the robot perceives after one tick.
+    def override(self, left: float, right: float) -> tuple[float, float]: ...
 
-    ``ir`` (sensor readings in [0, 1]), ``floor`` (colour id under the robot, 0 = plain),
-    ``sound`` (the reward sound was played this tick), ``odometry`` (dx, dy in the robot frame at
-    the start of the tick and dθ, cm and rad), ``moving`` (proprioception) and ``t`` are the
-    robot's senses. ``pose`` = (x, y, heading) and ``speed`` are ground truth, for analysis,
-    recording and the teacher only: they are never an input to the place cells.
-    """
+    def after_step(self) -> None: ...
 
-    __slots__ = ("floor", "ir", "moving", "odometry", "pose", "sound", "speed", "t", "tick")
-
-    def __init__(self, t: float, tick: int, ir: np.ndarray, floor: int, sound: bool,
-                 odometry: np.ndarray, moving: bool, pose: tuple[float, float, float],
-                 speed: float) -> None:
-        self.t, self.tick, self.ir, self.floor, self.sound = t, tick, ir, floor, sound
-        self.odometry, self.moving, self.pose, self.speed = odometry, moving, pose, speed
-
-    def __repr__(self) -> str:
-        x, y, h = self.pose
-        return (f"Observation(t={self.t:.1f}, pose=({x:.1f}, {y:.1f}, {h:.2f}), floor={self.floor},"
-                f" sound={self.sound}, moving={self.moving})")
+    def reset(self) -> None: ...
 
 
 @dataclass
@@ -92,10 +82,17 @@ class World:
         ang = self.sensors.angles
         self._ray_cos, self._ray_sin = np.cos(ang).tolist(), np.sin(ang).tolist()
         self._span = self.sensors.range_max - self.sensors.range_min
-        from hippo.sim.teacher import Teacher
-
-        self.teacher: Teacher = Teacher(self)
+        self._interventions: list[Intervention] = []
+        #: the last attached intervention (``Teacher(world)`` attaches itself), else None
+        self.teacher: Any = None
         self.reset(seed)
+
+    def attach(self, intervention: Intervention) -> None:
+        """Let ``intervention`` act on every step (override the wheels, then look after the
+        step) and be reset with the world. ``Teacher(world)`` calls this itself."""
+        if intervention not in self._interventions:
+            self._interventions.append(intervention)
+        self.teacher = intervention
 
     # -- construction -----------------------------------------------------------------------
     def reset(self, seed: int | None = None, pose: tuple[float, float, float] | None = None
@@ -135,7 +132,8 @@ class World:
         self.events: list[tuple[float, str, str]] = []
         self._sound_pending = False
         self._last_command = (0.0, 0.0)
-        self.teacher.reset()
+        for iv in self._interventions:
+            iv.reset()
         return self._observe(np.zeros(3), 0.0, sound=False)
 
     def _check_free(self, x: float, y: float) -> None:
@@ -251,9 +249,9 @@ class World:
             raise ValueError(f"action must be a pair of wheel speeds, got {action!r}") from None
         if not (math.isfinite(left) and math.isfinite(right)):
             raise ValueError(f"wheel commands must be finite, got ({left}, {right})")
-        teacher = self.teacher
-        if teacher.active:
-            left, right = teacher.override(left, right)
+        for iv in self._interventions:
+            if iv.active:
+                left, right = iv.override(left, right)
         left, right = self.robot.limit_wheels(left, right)
         self._last_command = (left, right)
         self._v, self._omega = self.robot.body_velocity(left, right)
@@ -276,11 +274,18 @@ class World:
         if self.robot.odometry_noise > 0:
             odo *= 1.0 + self.rng.normal(0.0, self.robot.odometry_noise, 3)
         sound, self._sound_pending = self._sound_pending, False
-        if teacher.active:
-            teacher.after_step()
+        for iv in self._interventions:
+            if iv.active:
+                iv.after_step()
         return self._observe(odo, speed, sound)
+
+    def observe(self) -> Observation:
+        """Sense without moving: the observation of a robot standing where it is (no odometry,
+        not moving, no sound). Draws sensor noise like a step does; updates :attr:`truth`."""
+        return self._observe(np.zeros(3), 0.0, False)
 
     def _observe(self, odo: np.ndarray, speed: float, sound: bool) -> Observation:
         x, y, h = self.pose
+        self.truth = GroundTruth(self.t, self.tick, (x, y, h), speed)
         return Observation(self.t, self.tick, self.sense(), self.arena.zone_of(x, y), sound, odo,
-                           speed > self.robot.moving_threshold, (x, y, h), speed)
+                           speed > self.robot.moving_threshold)

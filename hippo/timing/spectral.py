@@ -26,17 +26,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from hippo._checks import check_fields, check_finite, check_positive, check_range
+from hippo.types import check_state_id  # the one state-id rule (re-exported here)
 
 __all__ = ["BatteryState", "SpectralParams", "SpectralTiming", "check_state_id"]
-
-
-def check_state_id(name: str, state: object) -> int:
-    """Return ``state`` as an int state id, or raise ``ValueError`` (ids are integers >= 0)."""
-    if isinstance(state, bool) or not isinstance(state, (int, np.integer)):
-        raise ValueError(f"{name} must be an integer state id, got {state!r}")
-    if state < 0:
-        raise ValueError(f"{name} must be a state id >= 0, got {state!r}")
-    return int(state)
 
 
 @dataclass(frozen=True)

@@ -2,8 +2,9 @@
 
 Used by the timing demo, the precision benchmark and the tests; built on the public API only.
 
-- :func:`run_trial` — one trial through :class:`SpectralTiming` and :class:`TransitionCells`
-  (and optionally :class:`NonOccurrence`), with jittered control ticks. The event ``b`` comes
+- :func:`run_trial` — one trial through a :class:`~hippo.timing.chain.TimingChain` (spectral
+  timing -> transition cells -> non-occurrence, the same chain the brain steps), with jittered
+  control ticks. The event ``b`` comes
   from a teacher at the tick nearest a given delay, is omitted (extinction), or comes when the
   system itself says the learned delay is over (``self_end``: the agent's loop, in which the
   decision read at one tick shows in the senses at the next).
@@ -14,11 +15,11 @@ Used by the timing demo, the precision benchmark and the tests; built on the pub
 
 Example::
 
-    timing = SpectralTiming(); cells = TransitionCells(timing)
+    chain = TimingChain()
     rng = np.random.default_rng(0)
     for _ in range(3):
-        run_trial(timing, cells, 0, 1, 7.0, rng=rng)        # teach 0 -> 1 at 7 s
-    rep = run_trial(timing, cells, 0, 1, None, rng=rng, self_end=True)
+        run_trial(chain, 0, 1, 7.0, rng=rng)               # teach 0 -> 1 at 7 s
+    rep = run_trial(chain, 0, 1, None, rng=rng, self_end=True)
     rep.end                                                # ~7.0: the reproduced wait
 """
 
@@ -29,9 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hippo._checks import check_positive, check_range
-from hippo.timing.non_occurrence import NonOccurrence
-from hippo.timing.spectral import SpectralTiming
-from hippo.timing.transitions import TransitionCells
+from hippo.timing.chain import TimingChain
 
 __all__ = ["Reproduction", "TrialTrace", "reproduce", "run_trial"]
 
@@ -53,12 +52,14 @@ class TrialTrace:
     end: float | None
 
 
-def run_trial(timing: SpectralTiming, cells: TransitionCells, a: int, b: int,
-              delay: float | None, *, dt: float = 0.2, jitter: float = 0.1,
-              rng: np.random.Generator | None = None, nonocc: NonOccurrence | None = None,
+def run_trial(chain: TimingChain, a: int, b: int, delay: float | None, *, dt: float = 0.2,
+              jitter: float = 0.1, rng: np.random.Generator | None = None,
               self_end: bool = False, t_max: float | None = None, after: float = 4.0,
               other: int | None = None) -> TrialTrace:
     """Enter ``a``, stay until ``b`` comes, then let ``b`` (and ``other``) last ``after`` s.
+
+    ``chain``'s non-occurrence neurons (if it has them) watch the predictions: their firings
+    for ``(a, b)`` are the trace's ``fired``.
 
     delay: the teacher's delay (``b`` at the first tick with ``tau >= delay - tick/2``, i.e.
         the tick nearest the delay), or None for no teacher (extinction, or ``self_end``).
@@ -75,7 +76,8 @@ def run_trial(timing: SpectralTiming, cells: TransitionCells, a: int, b: int,
         check_positive("delay", delay)
     if t_max is None:
         t_max = 2.0 * delay + 5.0 if delay is not None else 60.0
-    if timing.state == a:
+    cells = chain.cells
+    if chain.state == a:
         raise ValueError(f"state {a} is already the winner: a trial starts by entering it "
                          "(end the previous trial in another state, e.g. with other=...)")
 
@@ -83,9 +85,8 @@ def run_trial(timing: SpectralTiming, cells: TransitionCells, a: int, b: int,
         return dt if jitter == 0 else dt * (1.0 + rng.uniform(-jitter, jitter))  # type: ignore[union-attr]
 
     def advance(state: int, d: float) -> dict:
-        ro = cells.step(timing.step(state, d), d)
-        fired = nonocc.step(ro, d) if nonocc is not None else []
-        return {"readouts": ro, "fired": fired}
+        step = chain.step(state, d)
+        return {"readouts": step.readouts, "fired": step.omitted}
 
     advance(a, dt)
     tau, end = 0.0, None
@@ -143,17 +144,15 @@ def reproduce(delay: float, *, seed: int = 0, teacher: int = 3, loops: int = 5,
     patrol's loop). A fresh learner per call; ``seed`` fixes the tick jitter.
     """
     rng = np.random.default_rng(seed)
-    timing = SpectralTiming()
-    cells = TransitionCells(timing)
-    nonocc = NonOccurrence()
-    kw = {"dt": dt, "jitter": jitter, "rng": rng, "nonocc": nonocc, "other": 2}
+    chain = TimingChain()
+    kw = {"dt": dt, "jitter": jitter, "rng": rng, "other": 2}
     for _ in range(teacher):
-        run_trial(timing, cells, 0, 1, delay, **kw)
-    learned = cells.learned_delay((0, 1))
+        run_trial(chain, 0, 1, delay, **kw)
+    learned = chain.cells.learned_delay((0, 1))
     waits = []
     for _ in range(loops):
-        rep = run_trial(timing, cells, 0, 1, None, self_end=True, t_max=3 * delay, **kw)
+        rep = run_trial(chain, 0, 1, None, self_end=True, t_max=3 * delay, **kw)
         waits.append(np.nan if rep.end is None else rep.end)
-    ext = run_trial(timing, cells, 0, 1, None, t_max=2 * delay + 5, **kw)
+    ext = run_trial(chain, 0, 1, None, t_max=2 * delay + 5, **kw)
     lag = ext.fired[0] - delay if ext.fired else np.nan
     return Reproduction(delay, waits, learned, lag)

@@ -29,9 +29,9 @@ def test_figure_with_everything(tmp_path):
     d.set_level("sound", 0.7)
     planner = Planner(PlannerParams(noise=0.0))
     walls = [((-10, -10), (110, -10)), ((110, -10), (110, 20)), ((-10, 20), (-10, -10))]
-    fig = plot_cognitive_map(g, planner.activity(g, d), d, walls=walls,
-                             path=planner.plan(g, d, 0), title="map")
-    assert isinstance(fig, Figure)
+    fig, ax = plot_cognitive_map(g, planner.activity(g, d), d, walls=walls,
+                                 path=planner.plan(g, d, 0), title="map")
+    assert isinstance(fig, Figure) and ax is fig.axes[0]
     out = tmp_path / "map.png"
     fig.savefig(out, dpi=60)
     assert out.stat().st_size > 1000
@@ -46,6 +46,6 @@ def test_figure_without_positions_uses_a_layout_and_given_axes():
     assert set(pos) == g.states and all(np.all(np.isfinite(p)) for p in pos.values())
     fig = Figure()
     ax = fig.add_subplot(1, 2, 2)
-    assert plot_cognitive_map(g, ax=ax) is fig
+    assert plot_cognitive_map(g, ax=ax) == (fig, ax)
     partial = small_map(True)  # state 5 has no position: placed around the others
     assert set(state_layout(partial)) == partial.states

@@ -4,7 +4,6 @@ import numpy as np
 import pytest
 
 from hippo.cli import run_scenario
-from hippo.scenarios.patrol import _passes
 
 
 def _waits_within(m, rel):
@@ -53,16 +52,3 @@ def test_bad_waits_are_refused(tmp_path):
         run_scenario("patrol", ["--quick", "--waits", "3,nan,5", "--out", str(tmp_path)])
     with pytest.raises(SystemExit):
         run_scenario("patrol", ["--quick", "--waits", "3,4", "--out", str(tmp_path)])
-
-
-def test_passes_by_a_checkpoint():
-    """Each pass within 30 cm counts once; runs at most ``gap`` ticks apart join; a pass under
-    way when the phase starts is not counted."""
-    x = np.array([0, 0, 0, 50, 50, 0, 50, 0, 0, 50, 50, 50, 50, 50, 50, 0, 0, 50], float)
-    phase = np.array([3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4])
-    arrays = {"x": x, "y": np.zeros_like(x), "phase": phase}
-    assert _passes(arrays, (0.0, 0.0), phase=4, gap=1) == [(5, 9), (15, 17)]
-    # a run that joins the pass under way at the phase start is skipped with it
-    assert _passes(arrays, (0.0, 0.0), phase=4, gap=2) == [(15, 17)]
-    assert _passes(arrays, (0.0, 0.0), phase=4, gap=0) == [(5, 6), (7, 9), (15, 17)]
-    assert _passes(arrays, (0.0, 0.0), phase=5) == []

@@ -81,8 +81,8 @@ def _still_runs(observations):
 
 
 def test_exploration_pauses_now_and_then():
-    from hippo.scenarios.place_preference import Log, explore
     from hippo.sim import World, arenas
+    from hippo.tasks import Log, explore
 
     paused = explore(World(arenas.goal_arena(), seed=0), 3000, 0.0, 0, Log(), "x",
                      pause_rate=0.003)

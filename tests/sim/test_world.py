@@ -10,6 +10,7 @@ from hippo.sim import (
     Recording,
     RobotParams,
     SensorModel,
+    Teacher,
     WallFollower,
     WallFollowerParams,
     World,
@@ -75,9 +76,9 @@ def test_robot_never_crosses_a_wall(arena_name, speed_factor):
         for _ in range(600):
             if rng.random() < 0.1:
                 cmd = rng.uniform(-1, 1, 2) * robot.speed_max
-            obs = world.step(cmd)
-            xs.append(obs.pose[0])
-            ys.append(obs.pose[1])
+            world.step(cmd)
+            xs.append(world.truth.pose[0])
+            ys.append(world.truth.pose[1])
         # the body (radius 3.7) may be pressed onto a wall (radius 0.5) but never through it
         assert _min_clearance(arena, xs, ys) > robot.radius + arena.wall_radius - 0.75
         assert all(0 < x < arena.width for x in xs) and all(0 < y < arena.height for y in ys)
@@ -95,12 +96,13 @@ def test_same_seed_gives_bit_identical_recording():
 def test_odometry_integrates_true_motion_in_free_space():
     world = World(box(300, 300), seed=0)
     obs = world.reset(0, pose=(150, 150, 0.4))
-    pi = PathIntegrator(obs.pose)
+    pi = PathIntegrator(world.truth.pose)
+    assert obs.t == world.truth.t == 0.0
     for k in range(150):
         left, right = 3.0 + 2 * math.sin(k / 20), 3.0 + 2 * math.cos(k / 15)
         obs = world.step((left, right))
         pi.step(obs.odometry)
-    x, y, h = obs.pose
+    x, y, h = world.truth.pose
     assert pi.x == pytest.approx(x, abs=1e-6) and pi.y == pytest.approx(y, abs=1e-6)
     assert math.cos(pi.heading - h) == pytest.approx(1.0, abs=1e-9)
 
@@ -109,11 +111,11 @@ def test_differential_drive_kinematics():
     world = World(box(300, 300), seed=0)
     world.reset(0, pose=(150, 150, 0.0))
     obs = world.step((4.0, 4.0))  # straight: 4 cm/s for 0.2 s
-    assert obs.pose[0] - 150 == pytest.approx(0.8, abs=1e-3)
+    assert world.truth.pose[0] - 150 == pytest.approx(0.8, abs=1e-3)
     world.reset(0, pose=(150, 150, 0.0))
     obs = world.step((-2.0, 2.0))  # spin in place: omega = 4 / 5.3 rad/s
-    assert obs.pose[2] == pytest.approx(0.2 * 4.0 / 5.3, abs=1e-3)
-    assert math.hypot(obs.pose[0] - 150, obs.pose[1] - 150) < 1e-3
+    assert world.truth.pose[2] == pytest.approx(0.2 * 4.0 / 5.3, abs=1e-3)
+    assert math.hypot(world.truth.pose[0] - 150, world.truth.pose[1] - 150) < 1e-3
     assert not obs.moving
 
 
@@ -152,39 +154,41 @@ def test_block_stops_the_robot_and_it_resumes():
     ctrl = WallFollower(WallFollowerParams(rho=0.0), rng=0)
     for _ in range(50):
         obs = world.step(ctrl.act(obs))
-    world.teacher.block(6.0)
-    x0, y0, _ = obs.pose
+    teacher = Teacher(world)
+    teacher.block(6.0)
+    x0, y0, _ = world.truth.pose
     speeds = []
     for _ in range(25):  # 5 s of block
         obs = world.step(ctrl.act(obs))
-        speeds.append(obs.speed)
-    assert math.hypot(obs.pose[0] - x0, obs.pose[1] - y0) < 3.0
+        speeds.append(world.truth.speed)
+    assert math.hypot(world.truth.pose[0] - x0, world.truth.pose[1] - y0) < 3.0
     assert not obs.moving
     for _ in range(30):
         obs = world.step(ctrl.act(obs))
-    assert not world.teacher.blocking
+    assert not teacher.blocking
     assert any(k == "block_end" for _, k, _ in world.events)
-    assert math.hypot(obs.pose[0] - x0, obs.pose[1] - y0) > 5.0 and obs.moving
+    assert math.hypot(world.truth.pose[0] - x0, world.truth.pose[1] - y0) > 5.0 and obs.moving
 
 
 def test_leash_leads_to_waypoints_and_releases():
     arena = arenas.patrol_course()
     world = World(arena, seed=0)
-    obs = world.reset(0)
-    world.teacher.lead(arenas.loop_waypoints()[:5])
+    world.reset(0)
+    teacher = Teacher(world)
+    teacher.lead(arenas.loop_waypoints()[:5])
     for _ in range(800):
-        obs = world.step((0.0, 0.0))  # the robot's own command is overridden
-        if not world.teacher.leading:
+        world.step((0.0, 0.0))  # the robot's own command is overridden
+        if not teacher.leading:
             break
-    assert not world.teacher.leading
+    assert not teacher.leading
     tx, ty = arenas.loop_waypoints()[4]
-    assert math.hypot(obs.pose[0] - tx, obs.pose[1] - ty) < 4.0
+    assert math.hypot(world.truth.pose[0] - tx, world.truth.pose[1] - ty) < 4.0
 
 
 def test_sound_appears_once_in_next_observation():
     world = World(box(), seed=0)
     world.reset(0)
-    world.teacher.sound()
+    Teacher(world).sound()
     assert world.step((0, 0)).sound
     assert not world.step((0, 0)).sound
 
@@ -204,8 +208,8 @@ def test_go_to_heading_turns_to_target():
     obs = world.reset(0, pose=(150, 150, 0.0))
     ctl = GoToHeading()
     for _ in range(30):
-        obs = world.step(ctl.act(obs, obs.pose[2], 2.0))
-    assert math.cos(obs.pose[2] - 2.0) > 0.99
+        obs = world.step(ctl.act(obs, world.truth.pose[2], 2.0))
+    assert math.cos(world.truth.pose[2] - 2.0) > 0.99
 
 
 def test_kidnap_moves_robot_and_logs():

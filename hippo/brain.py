@@ -1,0 +1,391 @@
+"""The per-tick neural loop: one object, one :meth:`Brain.step` per control tick.
+
+``Brain.step(observation) -> Tick`` runs, in the order of ``docs/architecture.md``::
+
+    PathIntegrator.step(odometry)    own pose estimate: headings for actions (never a place input)
+    places.step(obs)                 place-cell activities (learned RC-SFA-ICA by default)
+    proprioception                   moving/still, debounced over ``proprio_ticks`` ticks
+    StateLayer.step(...)             WTA over places + floor colour + sound + proprioception
+    TimingChain.step(winner)         spectral batteries -> transition cells -> non-occurrence
+    TransitionGraph / Drives         on a sensory event: add A->B with its action (heading and
+                                     distance by path integration, or "wait"); a reward links
+                                     its drive to the last transition
+    Decider                          the transition to execute and the motor mode (see
+                                     :mod:`hippo.decision`)
+    Drives.step(dt)                  drives rise; inhibited ones are held at 0
+
+The :class:`Tick` it returns is what the motor layer (:mod:`hippo.motor`) needs and what a log
+records. :meth:`Brain.perceive` is the neural chain alone (state layer and timing chain, no
+places, no decisions): the symbolic timing demo feeds it place activities directly. The brain
+never sees the ground truth: only a ground-truth place source (a comparison) receives it,
+through the explicit ``truth`` argument of :meth:`Brain.step`.
+
+Waiting (HIREL III). Stopping and resuming are proprioceptive events of the state layer:
+``still@C`` (stopped in context ``C``) and ``moving@C``. A checkpoint wait is the transition
+``still@C -> moving@C`` (action "wait", delay = the pause); the place-preference reward is
+``still@goal -> sound``. How waits end, and how a stop is approached, is in
+:mod:`hippo.decision`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from hippo._checks import check_finite, check_positive
+from hippo.cognitive_map import Action, DriveParams, Drives, Planner, PlannerParams, TransitionGraph
+from hippo.decision import Decider
+from hippo.perception.states import StateEvent, StateLayer, StateLayerParams
+from hippo.places import PlaceSource
+from hippo.sim.odometry import PathIntegrator
+from hippo.timing import NonOccurrenceParams, SpectralParams, TransitionParams
+from hippo.timing.chain import TimingChain, TimingStep
+from hippo.types import GroundTruth, Mode, Observation, StateKind, Transition, wrap_angle
+
+__all__ = ["Brain", "BrainParams", "Perception", "Tick"]
+
+
+@dataclass(frozen=True)
+class BrainParams:
+    """Parameters of the neural loop and its decisions (dt: the e-puck of SMC09).
+
+    still_turn: rad/s of rotation under which a robot that does not translate counts as still
+        (turning on the spot is movement for proprioception).
+    proprio_ticks: proprioception is debounced: the robot becomes still (or moving) after this
+        many consecutive ticks of it, so a stall at a corner is not a stop.
+    settle_time: after being lifted the robot explores this long (s) before it trusts its
+        place state again (learned place cells need a few seconds to recover; SMC09 Fig. 7).
+    move_timeout, move_margin, default_delay: a move is abandoned (the robot explores) after
+        ``move_timeout`` × its learned delay + ``move_margin`` s; a move the map has no delay
+        for counts as ``default_delay`` s.
+    approach: keep moving after entering a place until the learned ``C -> still@C`` delay is
+        over before stopping (False: stop as soon as the stop is chosen).
+    leave_fraction: an approaching robot stops anyway once a move out of its place is this far
+        (elapsed fraction of its learned delay) through: it would usually have left by then.
+    stop_lead: a stop timed by the map's delay (not by the transition cells) comes this
+        fraction of a tick early, besides the transition cells' latency (rounding to a tick).
+    turn_limit, turn_discount: a move whose heading differs from the robot's by more than
+        ``turn_limit`` rad (about 100°: it would turn a moving robot around) has its drive
+        activity multiplied by ``turn_discount`` when transitions compete (motor continuity
+        against aliasing).
+    cycle_visits, cycle_window, cycle_explore: habituation. Entering the same place
+        ``cycle_visits`` times within ``cycle_window`` s while a drive is active means the map
+        is leading the robot in circles (noisy place states can make transitions point back
+        and forth); it then explores for ``cycle_explore`` s.
+    coactive: soft recognition of a wanted stop's place: while moving with an active drive
+        whose stop is bound to place ``C``, the robot approaches that stop once ``C``'s activity
+        reaches this fraction of the most active place's, as if it had entered ``C`` (0
+        disables). Learned place cells split a stretch of track between prototypes that
+        alternate from lap to lap; the taught one need not win on every pass.
+    """
+
+    dt: float = 0.2
+    still_turn: float = 0.15
+    proprio_ticks: int = 2
+    settle_time: float = 6.0
+    move_timeout: float = 3.0
+    move_margin: float = 5.0
+    default_delay: float = 5.0
+    approach: bool = True
+    leave_fraction: float = 0.8
+    stop_lead: float = 0.5
+    turn_limit: float = 1.75
+    turn_discount: float = 0.5
+    cycle_visits: int = 3
+    cycle_window: float = 60.0
+    cycle_explore: float = 20.0
+    coactive: float = 0.6
+    states: StateLayerParams = field(default_factory=StateLayerParams)
+    spectral: SpectralParams = field(default_factory=SpectralParams)
+    #: latency 0.4 s = one tick from decision to motion + one tick of proprioceptive debounce
+    #: (``proprio_ticks - 1``): the robot's own end of a wait is then seen at the learned delay
+    transitions: TransitionParams = field(default_factory=lambda: TransitionParams(latency=0.4))
+    non_occurrence: NonOccurrenceParams = field(default_factory=NonOccurrenceParams)
+    planner: PlannerParams = field(default_factory=lambda: PlannerParams(w=0.9, noise=0.01))
+
+    def __post_init__(self) -> None:
+        check_positive("dt", self.dt)
+        check_positive("still_turn", self.still_turn, allow_zero=True)
+        check_positive("move_timeout", self.move_timeout)
+        check_positive("move_margin", self.move_margin, allow_zero=True)
+        check_positive("default_delay", self.default_delay)
+        if self.proprio_ticks < 1:
+            raise ValueError(f"proprio_ticks must be >= 1, got {self.proprio_ticks}")
+        check_positive("settle_time", self.settle_time, allow_zero=True)
+        check_positive("turn_limit", self.turn_limit)
+        for name in ("coactive", "leave_fraction", "stop_lead", "turn_discount"):
+            v = getattr(self, name)
+            if not 0.0 <= v <= 1.0:
+                raise ValueError(f"{name} must lie in [0, 1], got {v}")
+
+
+@dataclass(frozen=True, eq=False)
+class Perception:
+    """The neural chain's part of a tick: the state layer's event and the timing chain's step."""
+
+    event: StateEvent
+    timing: TimingStep
+
+
+@dataclass(frozen=True, slots=True)
+class Tick:
+    """What the brain did in one tick (what the motor layer acts on and a log records).
+
+    t: time (s); winner: the state the brain is in (None before the first decision);
+    event: a sensory event happened (the state layer's winner changed); mode: what the motor
+    layer is to do; transition: the transition being executed (None: none); target_heading:
+    the heading of the last move (rad; kept while the robot is lost); heading: the path
+    integrator's heading estimate; move_since, move_limit: when the current move was chosen
+    and how long it may take (s; None unless moving or approaching with a heading); settling:
+    the robot was just lifted and explores while its place cells recover; omitted: the
+    transitions whose predicted event did not come this tick (non-occurrence).
+    """
+
+    t: float
+    winner: int | None
+    event: bool
+    mode: Mode
+    transition: Transition | None
+    target_heading: float | None
+    heading: float
+    move_since: float
+    move_limit: float | None
+    settling: bool
+    omitted: tuple[Transition, ...]
+
+
+class Brain:
+    """HIREL's architecture on any place source; one :meth:`step` per control tick.
+
+    Parameters
+    ----------
+    places : a :class:`~hippo.places.PlaceSource` (None: only :meth:`perceive` is usable).
+    drives : drive name -> :class:`DriveParams`. The drive ``"sound"`` is satisfied by the
+        reward sound; others by :meth:`reward` (e.g. the teacher's end of a checkpoint block).
+    params : :class:`BrainParams`.
+    occluded : ``occluded(obs) -> bool``: something is pressed against the robot and its
+        distance sensors see only that (the teacher's block); the place cells then keep
+        hearing the last clear view. Default: never.
+    seed : seeds the brain's own random choices (planner noise, exploration of known moves).
+    """
+
+    def __init__(self, places: PlaceSource | None = None, *,
+                 drives: Mapping[str, DriveParams] | None = None,
+                 params: BrainParams | None = None, occluded: Any = None,
+                 seed: int = 0, rng: np.random.Generator | None = None) -> None:
+        self.places = places
+        self.p = p = params or BrainParams()
+        self.rng = rng if rng is not None else np.random.default_rng([seed, 7])
+        self.layer = StateLayer(p.states, n_place=places.n_units if places is not None else 0)
+        self.timing = TimingChain(p.spectral, p.transitions, p.non_occurrence)
+        self.graph = TransitionGraph()
+        self.drives = Drives(dict(drives if drives is not None else {"sound": DriveParams()}))
+        self.planner = Planner(p.planner, seed=seed)
+        self.pi = PathIntegrator()
+        self.occluded = occluded
+        self.t = 0.0
+        self.decide = Decider(self)
+        self._moving = True
+        self._flip = 0
+        self._settle_until = -math.inf
+        self._clear_view: np.ndarray | None = None
+        self._reset_episode()
+
+    # the neural parts under their usual names
+    @property
+    def spectral(self):
+        return self.timing.spectral
+
+    @property
+    def cells(self):
+        return self.timing.cells
+
+    @property
+    def nonocc(self):
+        return self.timing.nonocc
+
+    @property
+    def mode(self) -> Mode:
+        return self.decide.mode
+
+    @property
+    def current(self) -> Transition | None:
+        return self.decide.current
+
+    # -- episode bookkeeping ------------------------------------------------------------------
+    def _reset_episode(self) -> None:
+        self.state: int | None = None
+        self._entries: dict[int, tuple[float, tuple[float, float, float]]] = {}
+        self.entered_at = self.t
+        self._entry_pose = self.pi.pose
+        self._pending_rewards: list[str] = []
+        self.last_transition: Transition | None = None
+        self.non_occurrence: list[Transition] = []
+        self.readouts: dict = {}
+        self.decide.reset_episode()
+
+    def lifted(self, heading_change: float = 0.0) -> None:
+        """The robot was picked up and put down elsewhere: no transition spans the jump, and
+        the state competition starts afresh (the place cells keep their memory).
+
+        ``heading_change`` (rad) is how much the robot was turned while carried; the heading
+        estimate follows it (a robot's compass or head-direction system, not its place cells).
+        """
+        self.pi.heading = wrap_angle(self.pi.heading + heading_change)
+        self.layer.reset(keep_states=True)
+        self.nonocc.reset()
+        self.decide.release_all()
+        self._reset_episode()
+        self.decide.lifted()
+        self._settle_until = self.t + self.p.settle_time
+
+    def reward(self, drive: str) -> None:
+        """An external satisfaction of ``drive``: linked to the next transition performed."""
+        if drive not in self.drives:
+            raise KeyError(f"unknown drive {drive!r}; known: {', '.join(self.drives.names)}")
+        self._pending_rewards.append(drive)
+
+    def kind(self, state: int) -> StateKind:
+        """What ``state`` stands for."""
+        return StateKind(self.layer.key(state).kind)
+
+    def describe(self, state: int | None) -> str:
+        """Name of a state id (``place 3``, ``colour 1``, ``still@place 3``, ``sound``)."""
+        return "none" if state is None else self.layer.describe(state)
+
+    # -- the tick -----------------------------------------------------------------------------
+    def perceive(self, place: np.ndarray | None, *, colour: int | None, sound: bool,
+                 moving: bool, dt: float) -> Perception:
+        """The neural chain for one tick: state layer -> timing chain (learning never stops)."""
+        ev = self.layer.step(place, colour=colour, sound=sound, moving=moving, dt=dt)
+        return Perception(ev, self.timing.step(ev.winner, dt))
+
+    def step(self, obs: Observation, truth: GroundTruth | None = None) -> Tick:
+        """Perceive, learn and decide for one tick. ``truth`` is read by a ground-truth place
+        source only (the comparison that measures what perception costs)."""
+        p = self.p
+        if self.places is None:
+            raise ValueError("this Brain has no place source: use perceive(), or pass places")
+        ir = check_finite("sensor readings", obs.ir)
+        self.t = float(obs.t)
+        self.pi.step(obs.odometry)
+        if self.occluded is not None and self.occluded(obs) and self._clear_view is not None:
+            # occluded: the distance sensors see only what is pressed against the robot. They
+            # say nothing about the place, and feeding them to the reservoir would corrupt its
+            # memory for minutes; the place cells keep hearing the last clear view
+            acts = self.places.step(obs.with_ir(self._clear_view), truth)
+        else:
+            self._clear_view = ir
+            acts = self.places.step(obs, truth)
+        turning = abs(float(obs.odometry[2])) > p.still_turn * p.dt
+        moving = bool(obs.moving or turning)
+        if moving != self._moving:
+            self._flip += 1
+            if self._flip >= p.proprio_ticks:
+                self._moving, self._flip = moving, 0
+        else:
+            self._flip = 0
+        seen = self.perceive(acts, colour=obs.floor, sound=obs.sound, moving=self._moving,
+                             dt=p.dt)
+        ev = seen.event
+        self.readouts = seen.timing.readouts
+        self.non_occurrence = seen.timing.omitted  # type: ignore[assignment]
+        if self.t < self._settle_until:
+            self.decide.mode = Mode.EXPLORE
+            return self._tick(ev.changed, settling=True)
+        if self.state is None:  # (re)start: take the winner as it is, no transition
+            self.state, self.entered_at, self._entry_pose = ev.winner, self.t, self.pi.pose
+            self._entries[ev.winner] = (self.t, self.pi.pose)
+            self.decide.choose()
+        elif ev.changed:
+            self._on_event(ev.winner)
+        self.decide.recognise_stop()
+        self.decide.check_wait()
+        self.drives.step(p.dt)
+        return self._tick(ev.changed)
+
+    def _tick(self, event: bool, *, settling: bool = False) -> Tick:
+        d = self.decide
+        limit = None
+        if not settling and d.mode in (Mode.MOVE, Mode.APPROACH) and d.heading is not None:
+            delay = self.graph.delay(d.current) if d.current is not None else None
+            limit = self.p.move_timeout * float(delay or self.p.default_delay) + self.p.move_margin
+        return Tick(self.t, self.state, bool(event), d.mode, d.current, d.heading,
+                    self.pi.heading, d.current_since, limit, settling,
+                    tuple(self.non_occurrence))
+
+    def abandon(self) -> None:
+        """The motor layer gave up the current move (it took too long): explore."""
+        self.decide.mode, self.decide.current = Mode.EXPLORE, None
+
+    def _on_event(self, new: int) -> None:
+        """A sensory event: learn the transition just made (map, rewards), then decide."""
+        prev, t = self.state, self.t
+        kind = self.kind(new)
+        if kind == StateKind.MOVING and (prev is None or self.kind(prev) != StateKind.STILL):
+            prev = None  # "moving" without a stop before it (e.g. after being lifted): no event
+        entered_at, entry_pose = self.entered_at, self._entry_pose
+        ctx = self.layer.key(new).context
+        if (kind == StateKind.STILL and prev is not None and ctx is not None and ctx != prev
+                and self.kind(prev) == StateKind.PLACE and ctx in self._entries
+                and t - entered_at < self.p.states.context_time):
+            # the place that won just before the stop did not hold long enough to be its
+            # context (state layer ``context_time``): the stop is bound to the place before,
+            # and so is the transition into it (timed from entering that place)
+            prev = ctx
+            entered_at, entry_pose = self._entries[ctx]
+        prev, entered_at = self.decide.intended_source(new, kind, prev, entered_at)
+        if prev is not None:
+            self._learn(prev, new, t - entered_at, entry_pose)
+        if kind.is_context:
+            self.decide.release_away_from(new)
+        self.state = new
+        self.entered_at = t
+        self._entry_pose = self.pi.pose
+        if kind.is_context:
+            self._entries[new] = (t, self.pi.pose)
+        self.decide.on_event(new, kind, prev)
+
+    def _learn(self, prev: int, new: int, delay: float,
+               entry_pose: tuple[float, float, float]) -> None:
+        """Add ``prev -> new`` to the map with its action and delay; pay pending rewards."""
+        x0, y0, _ = entry_pose
+        x1, y1, _ = self.pi.pose
+        wait = self.kind(new) in (StateKind.STILL, StateKind.SOUND) or \
+            self.kind(prev) == StateKind.STILL
+        dist = math.hypot(x1 - x0, y1 - y0)
+        action = Action.wait() if wait or dist < 1e-6 else Action.move(
+            math.atan2(y1 - y0, x1 - x0), dist)
+        tr = self.graph.add_transition(prev, new, action, delay, time=self.t)
+        self.graph.observe_position(new, (x1, y1))
+        self.last_transition = tr
+        if self.kind(new) == StateKind.SOUND and "sound" in self.drives:
+            self.drives.reward("sound", tr)
+        for d in self._pending_rewards:
+            self.drives.reward(d, tr)
+        self._pending_rewards.clear()
+
+    # -- introspection ------------------------------------------------------------------------
+    def snapshot(self) -> dict[str, Any]:
+        """The per-tick signals a figure needs."""
+        cur = self.current
+        ro = self.readouts.get(cur) if cur is not None else None
+        sound = [r.prediction for k, r in self.readouts.items()
+                 if self.kind(k[1]) == StateKind.SOUND]
+        return {
+            "sound_prediction": max(sound, default=0.0),
+            "sound_non_occurrence": any(self.kind(k[1]) == StateKind.SOUND
+                                        for k in self.non_occurrence),
+            "winner": -1 if self.state is None else self.state,
+            "mode": int(self.mode),
+            "transition_a": -1 if cur is None else cur[0],
+            "transition_b": -1 if cur is None else cur[1],
+            "prediction": 0.0 if ro is None else ro.prediction,
+            "non_occurrence": bool(self.non_occurrence),
+            "drives": [self.drives.level(n) for n in self.drives.names],
+            "wait_drive": self.decide.wait_drive(),
+        }

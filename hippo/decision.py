@@ -1,0 +1,305 @@
+"""The brain's decisions: which transition to execute, and when a stop or a wait is over.
+
+A :class:`Decider` belongs to one :class:`~hippo.brain.Brain` and reads its parts (state layer,
+map, drives, planner, transition-cell readouts, heading estimate). It holds what the robot is
+doing — the motor :class:`~hippo.types.Mode`, the transition being executed, the heading of
+the last move — and changes it at sensory events and every tick:
+
+- :meth:`Decider.choose` — at the current state, the outgoing transition with the highest
+  drive activity (the planner), with motor continuity: a move that would turn a moving robot
+  around is discounted (``turn_limit``, ``turn_discount``). With no active drive the robot
+  explores along known moves (never by stopping); with an active drive and no reachable goal
+  it explores with the wall follower.
+- :meth:`Decider.check_wait` — an approach ends when the learned time-to-stop is over; a wait
+  on the robot's own next event (``moving``) ends when the transition cells' ``delay_over``
+  rises (the learned delay), a wait on an external event (the sound) when the non-occurrence
+  neuron fires. Either way the drives linked to the wait are inhibited until the robot
+  reaches a place from which that stop is not one transition away.
+- :meth:`Decider.recognise_stop` — soft recognition of a wanted stop's place (``coactive``).
+- habituation — entering one place ``cycle_visits`` times within ``cycle_window`` s while a
+  drive is active makes the robot explore for ``cycle_explore`` s.
+
+Stopping where it was taught. The transition ``C -> still@C`` carries a delay (time from
+entering ``C`` to stopping); the robot keeps its previous motion (mode ``APPROACH``) until that
+delay is over and then stops, so a checkpoint wait starts where the teacher blocked the robot.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+from typing import Any
+
+import numpy as np
+
+from hippo.types import Mode, StateKind, Transition, wrap_angle
+
+__all__ = ["Decider"]
+
+
+class Decider:
+    """The decision rules of one brain (see the module docstring).
+
+    ``brain``: the :class:`~hippo.brain.Brain` it decides for (this module does not import
+    the brain: the brain builds its decider).
+    """
+
+    def __init__(self, brain: Any) -> None:
+        self.b = brain
+        self._visits: deque[tuple[float, int]] = deque()
+        self._explore_until = -math.inf
+        self.reset_episode()
+
+    def reset_episode(self) -> None:
+        t = self.b.t
+        self.mode = Mode.EXPLORE
+        self.current: Transition | None = None
+        self.current_since = t
+        self.heading: float | None = None         # heading of the last move (kept when lost)
+        self._approach_t0 = t
+        self._waiting_on: Transition | None = None
+        self._inhibited: dict[str, int] = {}      # drive -> context state it was inhibited in
+
+    def lifted(self) -> None:
+        self._visits.clear()
+        self._explore_until = -math.inf
+
+    def release_all(self) -> None:
+        """Release every drive a finished wait inhibited."""
+        for d in list(self._inhibited):
+            self.b.drives.release(d)
+
+    def _drive_active(self) -> bool:
+        b = self.b
+        return any(b.drives.level(n) >= b.p.planner.exploration_threshold
+                   for n in b.drives.names)
+
+    # -- at a sensory event -------------------------------------------------------------------
+    def intended_source(self, new: int, kind: StateKind, prev: int | None, entered_at: float
+                        ) -> tuple[int | None, float]:
+        """The robot stopped for a stop it recognised softly while another place won: what it
+        did is that transition, timed from the recognition."""
+        w = self._waiting_on
+        intended = (kind == StateKind.STILL and w is not None and w[1] == new
+                    and self.mode == Mode.WAIT)
+        if intended and prev is not None and w[0] != prev:  # type: ignore[index]
+            return w[0], self._approach_t0  # type: ignore[index]
+        return prev, entered_at
+
+    def release_away_from(self, place: int) -> None:
+        """Drives inhibited by a finished wait are released once the robot reaches a place from
+        which that stop is not one transition away (it has left the checkpoint's region)."""
+        for d, c in list(self._inhibited.items()):
+            if c != place and not self.stops_at(place, c):
+                self.b.drives.release(d)
+                del self._inhibited[d]
+
+    def on_event(self, new: int, kind: StateKind, prev: int | None) -> None:
+        """Decide after the brain entered ``new`` (coming from ``prev``)."""
+        b = self.b
+        if (kind == StateKind.PLACE and self.mode == Mode.APPROACH and self.current is not None
+                and new != self.current[0]
+                and not self.stops_at(new, b.layer.key(self.current[1]).context)):
+            # on the way to a stop recognised softly (``coactive``): a place on the way that
+            # does not know the stop does not cancel it
+            return
+        if kind == StateKind.MOVING:
+            # resuming: keep the move chosen when the wait ended, else choose from the context
+            if self.mode != Mode.MOVE or self.current is None:
+                self.choose(b.layer.key(new).context, exclude_wait=True)
+            return
+        self._waiting_on = None
+        came_from = b.kind(prev) if prev is not None else None
+        if (kind == StateKind.PLACE and came_from is not None and came_from.is_context
+                and self._cycling(new)):
+            self._explore_until = b.t + b.p.cycle_explore
+        if b.t < self._explore_until:
+            self.mode, self.current = Mode.EXPLORE, None
+            return
+        self.choose()
+
+    def stops_at(self, state: int, ctx: int | None) -> bool:
+        """Is a stop in context ``ctx`` one transition away from ``state``?"""
+        g, layer = self.b.graph, self.b.layer
+        if ctx is None or not g.has_state(state):
+            return False
+        for _, s in g.outgoing(state):
+            k = layer.key(s)
+            if k.kind == StateKind.STILL and k.context == ctx:
+                return True
+        return False
+
+    def _cycling(self, place: int) -> bool:
+        """Habituation: has ``place`` been entered too often lately while a drive is active?"""
+        b, v = self.b, self._visits
+        v.append((b.t, place))
+        while v and v[0][0] < b.t - b.p.cycle_window:
+            v.popleft()
+        return self._drive_active() and sum(1 for _, s in v if s == place) >= b.p.cycle_visits
+
+    # -- choosing -----------------------------------------------------------------------------
+    def choose(self, state: int | None = None, *, exclude_wait: bool = False) -> None:
+        """Pick the transition to execute from ``state`` (default: the brain's state)."""
+        b = self.b
+        g = b.graph
+        s = b.state if state is None else state
+        keep_heading = self.mode in (Mode.MOVE, Mode.APPROACH) and self.heading is not None
+        lost = Mode.MOVE if keep_heading else Mode.EXPLORE
+        self.current = None
+        if s is None or not g.has_state(s):
+            self.mode = lost
+            self.current_since = b.t
+            return
+        out = g.outgoing(s)
+        if exclude_wait:
+            out = [t for t in out if not g.action(t).is_wait]
+        if not out:
+            self.mode = lost
+            return
+        choice = b.planner.decide(g, b.drives, s, b.rng)
+        tr = choice.transition
+        if choice.explored:
+            if self._drive_active():
+                # a drive is active but no goal is reachable from here: leave this part of
+                # the map by exploring (a random known move could circle in it forever)
+                self.mode = Mode.EXPLORE
+                return
+            # no drive: explore along known transitions, by moving, never by stopping
+            moves = [t for t in out if not g.action(t).is_wait]
+            if not moves:
+                self.mode = lost
+                return
+            tr = moves[int(b.rng.integers(len(moves)))]
+        else:
+            # motor continuity: a place can stand for two distant stretches of track (aliasing);
+            # a move that would turn the robot around is discounted, so the robot keeps to the
+            # stretch it is on rather than to the alias of it (also when it moves on after a
+            # wait: it still faces the way it came)
+            vals = np.array([self._activity(t) for t in out])
+            if keep_heading or exclude_wait:
+                for i, t in enumerate(out):
+                    a = g.action(t)
+                    if (not a.is_wait
+                            and abs(wrap_angle(a.heading - b.pi.heading)) > b.p.turn_limit):
+                        vals[i] *= b.p.turn_discount
+            if tr not in out or vals[out.index(tr)] < vals.max():
+                tr = out[int(np.argmax(vals))] if vals.max() > 0 else \
+                    out[int(b.rng.integers(len(out)))]
+        self.current, self.current_since = tr, b.t
+        action = g.action(tr)
+        if not action.is_wait:
+            self.mode = Mode.MOVE
+            self.heading = float(action.heading)  # type: ignore[arg-type]
+        elif b.kind(tr[1]) == StateKind.STILL and b.p.approach:
+            self.mode = Mode.APPROACH   # keep going until the learned time-to-stop is over
+            self._approach_t0 = b.entered_at
+        else:
+            self.mode = Mode.WAIT
+            self._waiting_on = tr
+
+    def _activity(self, tr: Transition) -> float:
+        act = self.b.planner.activity(self.b.graph, self.b.drives)
+        return float(act.values[act.index.pos[tr]])
+
+    # -- every tick ---------------------------------------------------------------------------
+    def recognise_stop(self) -> None:
+        """Soft recognition of a wanted stop's place (``coactive``).
+
+        Learned place cells often split one stretch of track between two prototypes that
+        alternate from lap to lap; the place a stop was taught in then does not win on every
+        pass. While moving with an active drive whose stop is bound to place ``C``, the robot
+        approaches that stop when ``C``'s activity is close to the winner's (``coactive`` ×
+        the most active place) and the map would choose that stop on entering ``C`` (its drive
+        beats those of the moves out of ``C``)."""
+        b = self.b
+        p = b.p
+        if p.coactive <= 0 or self.mode != Mode.MOVE or b.state is None:
+            return
+        acts = b.layer.place_activity
+        if acts.size == 0:
+            return
+        top = float(acts.max())
+        for name in b.drives.names:
+            if (b.drives.is_inhibited(name)
+                    or b.drives.level(name) < p.planner.exploration_threshold):
+                continue
+            for a, _ in b.drives.links(name):
+                ka = b.layer.key(a)
+                c = ka.context
+                if ka.kind != StateKind.STILL or c is None or c == b.state:
+                    continue
+                kc = b.layer.key(c)
+                if kc.kind != StateKind.PLACE or kc.index >= acts.size:  # type: ignore[operator]
+                    continue
+                if (float(acts[kc.index]) < p.coactive * top  # type: ignore[index]
+                        or not b.graph.has_state(c) or (c, a) not in b.graph):
+                    continue
+                # only if the map would choose that stop on entering C (drives compete)
+                if max(b.graph.outgoing(c), key=self._activity) != (c, a):
+                    continue
+                self.current, self.current_since = (c, a), b.t
+                self.mode, self._approach_t0 = Mode.APPROACH, b.t
+                return
+
+    def check_wait(self) -> None:
+        """End an approach (stop) or a wait when its time is over (see the module docstring)."""
+        b = self.b
+        p = b.p
+        if self.current is None:
+            return
+        ro = b.readouts.get(self.current)
+        if self.mode == Mode.APPROACH:
+            # stop when the learned time-to-stop is over, or before the robot would usually
+            # have left the place (the timed prediction of the moves out of it)
+            here = self.current[0] == b.state
+            leaving = here and any(
+                r.elapsed_fraction >= p.leave_fraction for k, r in b.readouts.items()
+                if k != self.current and r.strength >= p.transitions.min_strength
+                and b.kind(k[1]).is_context)
+            if here and ro is not None and ro.strength >= p.transitions.min_strength:
+                over = ro.delay_over
+            else:
+                # a stop recognised softly, or bound to this place over a brief one: timed by
+                # the map's delay since the place was recognised
+                delay = b.graph.delay(self.current)
+                lead = p.transitions.latency + p.stop_lead * p.dt
+                over = delay is None or b.t - self._approach_t0 >= float(delay) - lead
+            if over or leaving:
+                ctx = b.layer.key(self.current[1]).context
+                if ctx is not None:
+                    b.layer.bind_context(ctx)  # it stops *for* this place
+                self.mode, self._waiting_on = Mode.WAIT, self.current
+            return
+        if self.mode != Mode.WAIT or self._waiting_on is None:
+            return
+        a, s = self._waiting_on
+        own = b.kind(s) in (StateKind.MOVING, StateKind.PLACE, StateKind.COLOUR)
+        over = (ro is not None and ro.delay_over) if own else (a, s) in b.non_occurrence
+        if not over:
+            return
+        # the wait is over: inhibit the drives that chose it, then move on from the place
+        ctx = b.layer.key(a).context if b.kind(a) == StateKind.STILL else a
+        for name in b.drives.names:
+            if (a, s) in b.drives.links(name) and name not in self._inhibited:
+                b.drives.inhibit(name)
+                self._inhibited[name] = ctx if ctx is not None else a
+        self._waiting_on = None
+        self.mode = Mode.EXPLORE
+        self.choose(ctx if ctx is not None else a, exclude_wait=True)
+
+    def wait_drive(self) -> int:
+        """Index of the drive the robot is waiting or stopping for (-1: none)."""
+        b = self.b
+        cur = self._waiting_on if self.mode == Mode.WAIT else (
+            self.current if self.mode == Mode.APPROACH else None)
+        if cur is None:
+            return -1
+        if b.kind(cur[1]) == StateKind.STILL:  # the stop itself: the wait after it
+            nxt = b.graph.outgoing(cur[1]) if b.graph.has_state(cur[1]) else []
+        else:
+            nxt = [cur]
+        for i, name in enumerate(b.drives.names):
+            links = b.drives.links(name)
+            if any(t in links for t in nxt):
+                return i
+        return -1

@@ -1,0 +1,131 @@
+"""Exploration and map learning: the robot's own tour, and the map learned from it.
+
+- :func:`explore` — SMC09's wall follower with occasional pauses; returns the :class:`Tour`
+  (what the robot sensed, and where it was, tick by tick).
+- :func:`make_places` — the place-cell source fitted on a tour: RC-SFA-ICA read out by
+  radial-basis prototypes (learned, the default) or Gaussian fields (ground truth).
+- :func:`learn_map` — replay a tour through an agent: states, timed transitions, the map.
+- :data:`PLACE_STATES` — state-layer settings for place activities in [0, 1].
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from hippo.perception.place_cells import RCSFAICA
+from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
+from hippo.perception.states import StateLayerParams
+from hippo.places import GroundTruthPlaceCells, LearnedPlaceCells, PlaceSource
+from hippo.progress import Progress
+from hippo.sim.arena import Arena
+from hippo.sim.controllers import WallFollower, WallFollowerParams
+from hippo.sim.world import World
+from hippo.tasks.log import Log
+from hippo.types import GroundTruth, Observation
+
+__all__ = ["PAUSE_RATE", "PLACE_STATES", "Tour", "explore", "learn_map", "make_places"]
+
+#: probability per exploration tick of a pause (2-30 s): about one pause a minute
+PAUSE_RATE = 0.003
+
+#: state-layer settings for place activities in [0, 1] (prototypes, Gaussian fields)
+PLACE_STATES = StateLayerParams(normalize="fixed", place_scale=0.5, context_time=1.0)
+
+
+@dataclass
+class Tour:
+    """An exploration, tick by tick: the observations and the matching ground truth."""
+
+    observations: list[Observation] = field(default_factory=list)
+    truths: list[GroundTruth] = field(default_factory=list)
+
+    def __len__(self) -> int:
+        return len(self.observations)
+
+    def __getitem__(self, i: int) -> Observation:
+        return self.observations[i]
+
+    def __iter__(self):
+        return iter(self.observations)
+
+    @property
+    def sensors(self) -> np.ndarray:
+        """The sensor readings, (T, n_sensors)."""
+        return np.array([o.ir for o in self.observations])
+
+
+def explore(world: World, ticks: int, rho: float, seed: int, log: Log | None = None,
+            desc: str = "exploration", pause_rate: float = PAUSE_RATE, phase: int = 0) -> Tour:
+    """Drive the robot with the wall follower, pausing now and then; return the :class:`Tour`.
+
+    With probability ``pause_rate`` per tick the robot stands still for 2-30 s (uniform). A
+    robot that will wait at goals and checkpoints must have stood still while it learned its
+    place cells: the slow features then treat a stop as part of the place, not as a new
+    input (without pauses, a wait left the learned places off for the next minute).
+    Each tick is logged in ``log`` (no agent yet) under ``phase``."""
+    ctrl = WallFollower(WallFollowerParams(rho=rho), sensors=world.sensors, robot=world.robot,
+                        rng=np.random.default_rng([seed, 3]))
+    rng = np.random.default_rng([seed, 4])
+    obs = world.observe()
+    tour = Tour()
+    pause = 0
+    with Progress(ticks, desc) as bar:
+        for _ in range(ticks):
+            if pause > 0:
+                pause -= 1
+                obs = world.step((0.0, 0.0))
+            else:
+                if pause_rate > 0 and rng.random() < pause_rate:
+                    pause = int(rng.uniform(2.0, 30.0) / world.dt)
+                obs = world.step(ctrl.act(obs))
+            tour.observations.append(obs)
+            tour.truths.append(world.truth)
+            if log is not None:
+                log.add(obs, world.truth, None, phase, -1)
+            bar.update()
+    return tour
+
+
+def learn_map(agent: Any, tour: Tour, desc: str = "map learning") -> None:
+    """Replay the exploration through ``agent``: it learns its states, their timed transitions
+    and the cognitive map from the robot's own run.
+
+    The exploration's pauses are left out (ticks where the robot neither moved nor turned):
+    they train the place cells on standing still, but a stop made for no reason is no event of
+    the task. Replayed, every pause would leave a wait in the map for the planner to route
+    through (measured: with --delay 3.3 the robot then stopped on its way at pause places and
+    reached the goal in 52 of 60 rewarded trials instead of 60)."""
+    needs_truth = getattr(agent.places, "kind", "") == "ground-truth"
+    with Progress(len(tour), desc) as bar:
+        for o, truth in zip(tour.observations, tour.truths):
+            if o.moving or np.any(o.odometry):
+                agent.step(o, truth if needs_truth else None)
+            bar.update()
+
+
+def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: int,
+                n_places: int = 32) -> PlaceSource:
+    """The place-cell source: RC-SFA-ICA fitted on the exploration (``units`` ICA units read
+    out by ``n_places`` radial-basis prototypes over the ICA population vector), or ground
+    truth (Gaussian fields at the arena's labelled locations).
+
+    The reservoir is faster than SMC09's room detector (leaks 0.1 / 0.3 and spectral radius
+    0.9 instead of 0.05 / 0.15 and 0.99): its slowest mode then forgets in about 20 s instead
+    of several minutes, so what the closed loop does to the sensors (a leash off the explored
+    line, a block, a wait) fades within a corridor. Measured over seeds 0-9: the patrol stops
+    at 87 % of checkpoint passes instead of 74 %, place preference succeeds in 119 of 120
+    rewarded trials instead of 116.
+    """
+    if kind == "ground-truth":
+        return GroundTruthPlaceCells(arena.locations, sigma=8.0)
+    if kind != "learned":
+        raise ValueError(f"place cells must be 'learned' or 'ground-truth', got {kind!r}")
+    model = RCSFAICA(n_reservoir=400, leak=(0.1, 0.3), spectral_radius=0.9, n_sfa=units,
+                     n_ica=units, ica_restarts=3, seed=seed)
+    Y = model.fit_transform(sensors)
+    protos = PlacePrototypes(PrototypeParams(n_prototypes=n_places, seed=seed)).fit(Y)
+    model.reset_state()
+    return LearnedPlaceCells(model, protos)

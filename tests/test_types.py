@@ -1,0 +1,78 @@
+"""The shared vocabulary: one angle convention, one state-id rule, enums, senses vs truth."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from hippo.sim import World, arenas
+from hippo.types import (
+    GroundTruth,
+    Mode,
+    Observation,
+    StateKind,
+    check_state_id,
+    check_transition,
+    wrap_angle,
+)
+
+
+def test_wrap_angle_convention_is_half_open_at_minus_pi():
+    assert wrap_angle(math.pi) == math.pi
+    assert wrap_angle(-math.pi) == math.pi
+    assert wrap_angle(3 * math.pi) == math.pi
+    assert wrap_angle(0.0) == 0.0
+    assert wrap_angle(2 * math.pi) == 0.0
+    assert wrap_angle(-math.pi / 2) == pytest.approx(-math.pi / 2)
+
+
+@given(st.floats(min_value=-1e4, max_value=1e4, allow_nan=False))
+def test_wrap_angle_lands_in_range_and_keeps_the_direction(a):
+    w = wrap_angle(a)
+    assert -math.pi < w <= math.pi
+    assert math.cos(w) == pytest.approx(math.cos(a), abs=1e-9)
+    assert math.sin(w) == pytest.approx(math.sin(a), abs=1e-9)
+
+
+def test_one_state_id_rule_everywhere():
+    assert check_state_id("s", 3) == 3 and check_state_id("s", np.int64(4)) == 4
+    for bad in (True, np.bool_(False), 1.0, "2", None):
+        with pytest.raises(ValueError, match="s must be an integer state id"):
+            check_state_id("s", bad)
+    with pytest.raises(ValueError, match=">= 0"):
+        check_state_id("s", -1)
+    assert check_transition("t", (1, 2)) == (1, 2)
+    with pytest.raises(ValueError, match="pair"):
+        check_transition("t", 5)
+    # the map and the timing modules apply the same rule
+    from hippo.cognitive_map.graph import state_id
+    from hippo.timing.spectral import check_state_id as spectral_check
+
+    with pytest.raises(ValueError, match=">= 0"):
+        state_id(-2)
+    assert spectral_check is check_state_id
+
+
+def test_enums_keep_the_stored_values():
+    assert [int(m) for m in Mode] == [0, 1, 2, 3]
+    assert str(Mode.WAIT) == "wait"
+    assert StateKind.STILL == "still" and f"{StateKind.PLACE}" == "place"
+    assert StateKind("colour").is_context and not StateKind.SOUND.is_context
+
+
+def test_the_observation_holds_only_senses_and_the_truth_is_apart():
+    world = World(arenas.goal_arena(), seed=0)
+    obs = world.step((3.0, 3.0))
+    assert isinstance(obs, Observation)
+    with pytest.raises(AttributeError, match=r"World\.truth"):
+        obs.pose  # noqa: B018
+    with pytest.raises(AttributeError, match=r"World\.truth"):
+        obs.speed  # noqa: B018
+    truth = world.truth
+    assert isinstance(truth, GroundTruth)
+    assert truth.t == obs.t and truth.tick == obs.tick
+    assert truth.pose == world.pose and truth.speed > 0
+    with pytest.raises(AttributeError):
+        obs.t = 1.0  # frozen
