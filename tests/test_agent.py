@@ -28,11 +28,16 @@ def test_ground_truth_place_cells_equation():
         pc.step(World(arenas.goal_arena(), seed=0).observe())
 
 
-def test_transitions_carry_path_integrated_headings():
+@pytest.mark.parametrize("contexts", [False, True])
+def test_transitions_carry_path_integrated_headings(contexts):
+    from hippo.perception.contexts import ContextParams
+    from hippo.perception.states import StateLayerParams
+
     _arena, world = corridor_world()
     centres = np.array([[x, 15.0] for x in range(20, 200, 30)])
+    params = AgentParams(states=StateLayerParams(contexts=ContextParams() if contexts else None))
     agent = Agent(GroundTruthPlaceCells(centres, sigma=8.0), drives={"sound": DriveParams()},
-                  sensors=world.sensors, robot=world.robot, seed=0)
+                  params=params, sensors=world.sensors, robot=world.robot, seed=0)
     obs = world.reset(0)
     for _ in range(300):  # drive east along the corridor with the wall follower
         obs = world.step(agent.step(obs, world.truth))
@@ -43,6 +48,8 @@ def test_transitions_carry_path_integrated_headings():
         assert b == a + 1
         assert abs(agent.graph.action(t).heading) < 0.35
         assert agent.graph.action(t).distance == pytest.approx(30.0, abs=8.0)
+        # with context states the map's states are the places' context states
+        assert all((agent.layer.clone(x) is not None) == contexts for x in t)
 
 
 def test_taught_wait_is_reproduced_at_the_learned_delay():
