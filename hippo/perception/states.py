@@ -231,7 +231,7 @@ class StateLayer:
             cp = self.params.contexts
             self.contexts: ContextStates | None = None if cp is None else ContextStates(cp)
             self._clone_of: dict[int, int] = {}           # state id -> context id
-            self._clone_ids: dict[tuple[int, int], int] = {}  # (unit, context id) -> state id
+            self._clone_ids: dict[int, int] = {}           # context id -> state id
         else:
             self._mean[:] = 0.0
             self._var[:] = 1.0
@@ -354,12 +354,19 @@ class StateLayer:
 
     def _context_state(self, unit: int) -> int:
         """Place unit ``unit`` won: the id of its context state (learning the way in)."""
-        cid = self.contexts.observe(int(unit), self.t)  # type: ignore[union-attr]
-        rep = int(self.contexts.same(int(unit)))  # type: ignore[union-attr]
-        sid = self._clone_ids.get((rep, cid))
+        ctx = self.contexts
+        cid = ctx.observe(int(unit), self.t)  # type: ignore[union-attr]
+        sid = self._clone_ids.get(cid)
         if sid is None:
-            sid = self._clone_ids[(rep, cid)] = len(self._keys)
-            self._keys.append(StateKey("place", rep, None))
+            # a context born of a split or a merge keeps the state id of the oldest context
+            # it replaced, so what the map and the timing learned about it carries over
+            older = [c for c in self._clone_ids if ctx.resolve(c) == cid]  # type: ignore[union-attr]
+            if older:
+                sid = self._clone_ids[min(older)]
+            else:
+                sid = len(self._keys)
+                self._keys.append(StateKey("place", int(ctx.same(int(unit))), None))  # type: ignore[union-attr]
+            self._clone_ids[cid] = sid
             self._clone_of[sid] = cid
         return sid
 
