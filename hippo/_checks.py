@@ -63,7 +63,8 @@ def check_shape(name: str, arr: np.ndarray, shape: tuple[int | None, ...]) -> np
     """Raise ``ValueError`` unless ``arr`` has dims matching ``shape`` (None = any size)."""
     a = np.asarray(arr)
     if a.ndim != len(shape) or any(s is not None and s != d for s, d in zip(shape, a.shape)):
-        want = "(" + ", ".join("*" if s is None else str(s) for s in shape) + ")"
+        want = "(" + ", ".join("*" if s is None else str(s) for s in shape) + (
+            ",)" if len(shape) == 1 else ")")
         raise ValueError(f"{name} must have shape {want}, got {a.shape}")
     return a
 
@@ -115,10 +116,11 @@ def check_real(name: str, value: Any) -> float:
 
 
 def check_array(name: str, value: Any, *, shape: tuple[int | None, ...] | None = None,
-                dtype: str = "float", finite: bool = True) -> np.ndarray:
+                dtype: str = "float", finite: bool = True,
+                max_abs: float | None = None) -> np.ndarray:
     """Check a loaded or given array: its kind (``float``: real numbers; ``int``: integers;
-    ``bool``), its ``shape`` (None = any size), and (numbers) finiteness. Returns a copy of
-    type float64 / int64 / bool."""
+    ``bool``), its ``shape`` (None = any size), (numbers) finiteness, and ``|value| <= max_abs``.
+    Returns a copy of type float64 / int64 / bool."""
     a = np.asarray(value)
     kind = a.dtype.kind
     if dtype == "float":
@@ -140,6 +142,9 @@ def check_array(name: str, value: Any, *, shape: tuple[int | None, ...] | None =
     if finite and dtype == "float" and not np.isfinite(a).all():
         bad = int(a.size - np.count_nonzero(np.isfinite(a)))
         raise ValueError(f"{name} contains {bad} non-finite value(s) (NaN or inf)")
+    if max_abs is not None and a.size and dtype != "bool" and np.abs(a).max() > max_abs:
+        raise ValueError(f"{name} holds a value of magnitude {np.abs(a).max():.3g}, beyond "
+                         f"{max_abs:g}: no fit produces it")
     return a
 
 
@@ -217,3 +222,45 @@ def check_fields(obj: Any) -> None:
 
 
 _HINTS: dict[type, dict[str, Any]] = {}
+
+
+def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarray, float]:
+    """The per-tick check of a robot's observation; returns ``(ir, t)``.
+
+    ``obs`` must carry ``ir`` (``n_sensors`` readings in [0, 1]), ``t`` (a finite time no earlier
+    than ``last_t``: a clock running backwards is refused; the same observation may be fed
+    twice, as when a task hands the last observation of a recording to the loop), ``odometry``
+    (3 finite numbers), ``floor`` (an integer colour id >= 0), ``sound`` and ``moving`` (bools).
+    Cheap: one min/max over the readings (NaN fails it too), a few scalar tests.
+    """
+    try:
+        ir, t, odo = obs.ir, obs.t, obs.odometry
+        floor, sound, moving = obs.floor, obs.sound, obs.moving
+    except AttributeError as exc:
+        raise ValueError(f"obs must be an Observation (ir, t, odometry, floor, sound, moving), "
+                         f"got {type(obs).__name__} ({exc})") from None
+    try:
+        ir = np.asarray(ir, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"obs.ir must be {n_sensors} sensor readings, got {ir!r:.80}") from None
+    if ir.shape != (n_sensors,):
+        raise ValueError(f"obs.ir must have shape ({n_sensors},), got {ir.shape} ({ir!r:.80})")
+    if not (ir.min() >= 0.0 and ir.max() <= 1.0):
+        raise ValueError(f"obs.ir readings must be finite and in [0, 1], got {ir}")
+    if isinstance(t, bool) or not isinstance(t, numbers.Real) or not math.isfinite(t):
+        raise ValueError(f"obs.t must be a finite time in s, got {t!r}")
+    if t < last_t:
+        raise ValueError(f"obs.t = {t!r} is earlier than the previous tick's {last_t!r}: "
+                         "the clock must run forward")
+    try:
+        odo = np.asarray(odo, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"obs.odometry must be (dx, dy, dtheta), got {odo!r:.80}") from None
+    if odo.shape != (3,) or not np.isfinite(odo).all():
+        raise ValueError(f"obs.odometry must be 3 finite numbers (dx, dy, dtheta), got {odo!r:.80}")
+    if isinstance(floor, bool | np.bool_) or not isinstance(floor, numbers.Integral) or floor < 0:
+        raise ValueError(f"obs.floor must be an integer colour id >= 0, got {floor!r}")
+    for name, v in (("sound", sound), ("moving", moving)):
+        if not isinstance(v, bool | np.bool_):
+            raise ValueError(f"obs.{name} must be True or False, got {v!r}")
+    return ir, float(t)

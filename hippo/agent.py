@@ -12,13 +12,14 @@ by default, Gaussian fields on the true position only to measure what perception
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite
+from hippo._checks import check_observation
 from hippo.brain import Brain, BrainParams, Tick
 from hippo.cognitive_map import DriveParams
 from hippo.motor import Motor, MotorParams
@@ -106,6 +107,7 @@ class Agent:
         self.brain = Brain(places, drives=drives, params=self.params.brain,
                            occluded=self.motor.boxed_in, seed=seed)
         self.last_tick: Tick | None = None
+        self._last_t = -math.inf  # the clock must run forward (check_observation)
 
     @property
     def p(self) -> AgentParams:
@@ -127,9 +129,7 @@ class Agent:
         """Perceive, learn, decide and act for one tick; returns wheel speeds (cm/s).
 
         ``truth`` (``World.truth``) is needed only by ground-truth place cells."""
-        ir = check_finite("sensor readings", obs.ir)
-        if ir.shape != (self.sensors.n,):
-            raise ValueError(f"expected {self.sensors.n} sensor readings, got shape {ir.shape}")
+        _, self._last_t = check_observation(obs, self.sensors.n, self._last_t)
         tick = self.brain.step(obs, truth)
         command = self.motor.act(obs, tick)
         if command.gave_up:

@@ -1,48 +1,35 @@
-"""The ``hippo`` command: ``hippo run SCENARIO``, ``hippo record ARENA``, ``hippo demo``.
+"""The ``hippo`` command: ``hippo run SCENARIO``, ``hippo sweep SCENARIO``,
+``hippo record ARENA``, ``hippo demo``, ``hippo list``.
 
 Each scenario is a module under :mod:`hippo.scenarios` that defines
-``add_arguments(parser)`` and ``run(args) -> dict`` (the metrics it wrote). The scripts in
+``add_arguments(parser)`` and ``run(args) -> dict`` (the metrics it wrote), and may define
+``check_args(args, parser)`` for checks that involve several arguments. The scripts in
 ``scenarios/`` call the same functions, so the command line and the scripts run the same code.
+
+Every argument is checked before any work starts (:mod:`hippo.cli_args`); a mistake is one
+line on stderr and exit status 2. A failure while running is one line and exit status 1
+(``HIPPO_DEBUG=1`` shows the traceback).
 """
 
 from __future__ import annotations
 
 import argparse
-import importlib
+import os
 import sys
 from collections.abc import Sequence
 
-#: scenario name -> module implementing it
-SCENARIOS: dict[str, str] = {
-    "demo": "hippo.scenarios.demo",
-    "two-rooms": "hippo.scenarios.two_rooms",
-    "maze": "hippo.scenarios.maze",
-    "timing-demo": "hippo.scenarios.timing_demo",
-    "place-preference": "hippo.scenarios.place_preference",
-    "patrol": "hippo.scenarios.patrol",
-}
+from hippo.cli_args import FAILURE, USAGE_ERROR, Parser
+from hippo.runner import (
+    DESCRIPTIONS,
+    SCENARIOS,
+    _scenario_name,
+    parse_scenario_args,
+    run_scenario,
+    scenario_parser,
+)
 
-
-def scenario_parser(name: str, prog: str | None = None) -> tuple[argparse.ArgumentParser, object]:
-    """The argument parser of scenario ``name`` (common options plus its own) and its module."""
-    if name not in SCENARIOS:
-        raise SystemExit(f"unknown scenario {name!r}; choose from: {', '.join(SCENARIOS)}")
-    module = importlib.import_module(SCENARIOS[name])
-    parser = argparse.ArgumentParser(prog=prog or f"hippo run {name}",
-                                     description=(module.__doc__ or "").strip().splitlines()[0])
-    parser.add_argument("--out", default=f"out/{name}", help="output folder (default: %(default)s)")
-    parser.add_argument("--seed", type=int, default=0, help="random seed (default: %(default)s)")
-    parser.add_argument("--quick", action="store_true",
-                        help="a short version for tests and first looks")
-    module.add_arguments(parser)
-    return parser, module
-
-
-def run_scenario(name: str, argv: Sequence[str] = ()) -> dict:
-    """Parse ``argv`` for scenario ``name``, run it, and return its metrics."""
-    parser, module = scenario_parser(name)
-    args = parser.parse_args(list(argv))
-    return module.run(args)
+__all__ = ["DESCRIPTIONS", "SCENARIOS", "main", "parse_scenario_args", "record_main",
+           "run_scenario", "scenario_parser"]
 
 
 def record_main(argv: Sequence[str]) -> int:
@@ -80,38 +67,87 @@ def record_main(argv: Sequence[str]) -> int:
     return 0
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    argv = list(sys.argv[1:] if argv is None else argv)
-    top = argparse.ArgumentParser(prog="hippo", description=__doc__.strip().splitlines()[0])
-    sub = top.add_subparsers(dest="command", required=True)
-    p_run = sub.add_parser("run", help="run a scenario", add_help=False)
-    p_run.add_argument("scenario", choices=sorted(SCENARIOS))
+def _list() -> None:
+    width = max(map(len, SCENARIOS)) + 2
+    print("scenarios (hippo run NAME --help for the options of one):")
+    for name in SCENARIOS:
+        print(f"  {name:{width}s}{DESCRIPTIONS.get(name, '')}")
+
+
+def _top_parser() -> Parser:
+    top = Parser(prog="hippo", description="hippocampus-inspired navigation of a simulated "
+                 "robot: run its experiments, record runs")
+    sub = top.add_subparsers(dest="command", metavar="COMMAND")
+    sub.add_parser("run", help="run a scenario: hippo run NAME [options] (see hippo list)",
+                   add_help=False)
     sub.add_parser("demo", help="drive the robot in the two-rooms arena (same as run demo)",
                    add_help=False)
     sub.add_parser("record", help="record a wall-following run to .npz", add_help=False)
-    sub.add_parser("list", help="list the scenarios")
+    sub.add_parser("sweep", help="run a scenario over seeds x parameters on Dask distributed",
+                   add_help=False)
+    sub.add_parser("list", help="list the scenarios with what each does")
+    return top
+
+
+def _main(argv: list[str]) -> int:
+    top = _top_parser()
     if not argv or argv[0] in ("-h", "--help"):
         top.print_help()
+        print()
+        _list()
         return 0
     cmd, rest = argv[0], argv[1:]
     if cmd == "list":
-        for name, mod in SCENARIOS.items():
-            print(f"{name:18s} {mod}")
+        if rest:
+            top.error(f"'hippo list' takes no arguments, got {' '.join(rest)!r}")
+        _list()
         return 0
     if cmd == "demo":
         run_scenario("demo", rest)
         return 0
+    if cmd == "sweep":
+        from hippo.sweep import sweep_main
+
+        return sweep_main(rest)
     if cmd == "record":
         return record_main(rest)
     if cmd == "run":
-        if not rest or rest[0] in ("-h", "--help"):
-            p_run.print_help()
-            print("\nscenarios: " + ", ".join(SCENARIOS))
+        run_parser = Parser(prog="hippo run")
+        if not rest:
+            run_parser.error(f"name a scenario: {', '.join(SCENARIOS)}")
+        if rest[0] in ("-h", "--help"):
+            print("usage: hippo run NAME [options]   (hippo run NAME --help for the options)\n")
+            _list()
             return 0
-        run_scenario(rest[0], rest[1:])
+        name = _scenario_name(rest[0], run_parser)
+        run_scenario(name, rest[1:])
         return 0
-    top.parse_args(argv)  # prints the error for an unknown command
-    return 2
+    top.error(f"unknown command {cmd!r}; choose from: run, demo, record, sweep, list")
+    return USAGE_ERROR  # (not reached: error exits)
+
+
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``hippo`` command; returns the exit status."""
+    args = list(sys.argv[1:] if argv is None else argv)
+    try:
+        return _main(args)
+    except KeyboardInterrupt:
+        print("hippo: interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:
+        if os.environ.get("HIPPO_DEBUG"):
+            raise
+        if isinstance(exc, OSError) and exc.strerror:
+            where = f": {exc.filename}" if exc.filename else ""
+            msg = f"{exc.strerror}{where}"
+        else:
+            msg = f"{type(exc).__name__}: {exc}"
+        print(f"hippo: error: {_one_line(msg)} (HIPPO_DEBUG=1 shows where)", file=sys.stderr)
+        return FAILURE
 
 
 if __name__ == "__main__":

@@ -50,3 +50,16 @@ def test_parallel_map_keeps_order_and_does_not_nest():
     # the inner maps ran on the outer workers themselves: no pool inside a pool
     assert len(set(seen)) <= 2 and all(not n.startswith("MainThread") for n in seen)
     assert parallel_map(inner, [], workers=2) == []
+
+
+def test_free_cores_follow_the_load():
+    from hippo._threads import blas_budget, free_cores, usable_cores
+
+    cores = usable_cores()
+    assert free_cores(load=0.0) == cores      # a quiet machine: every core
+    assert free_cores(load=1.0) == cores      # only this process runs
+    assert free_cores(load=cores + 5.0) == 1  # busy: one worker, never oversubscribed
+    if cores >= 2:
+        assert free_cores(load=2.0) == cores - 1
+    assert 1 <= free_cores() <= cores
+    assert blas_budget(2, cores=2) == 1 and blas_budget(1, cores=4) == 4

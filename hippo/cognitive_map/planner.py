@@ -339,14 +339,17 @@ class Planner:
         self._key: tuple[Any, ...] | None = None
         self._levels: dict[str, float] | None = None
         self._activity: Activity | None = None
-        self._refs: tuple[TransitionGraph, Drives] | None = None  # keeps the cached ids valid
+        self._refs: tuple[TransitionGraph, Drives] | None = None  # the map and drives cached
 
     def activity(self, graph: TransitionGraph, drives: Drives, *, force: bool = False) -> Activity:
         """The propagated activity for the current drives (cached, see the class docstring)."""
         p = self.params
         levels = effective_levels(drives, p.exploration_threshold)
-        key = (id(graph), graph.structure_version, id(drives), drives.links_version)
-        if (not force and self._activity is not None and key == self._key
+        # the same map and drives objects (by identity, not by id(): a restored snapshot
+        # keeps its cache), unchanged in structure and goal links
+        key = (graph.structure_version, drives.links_version)
+        same = self._refs is not None and self._refs[0] is graph and self._refs[1] is drives
+        if (not force and self._activity is not None and same and key == self._key
                 and self._levels is not None and self._levels.keys() == levels.keys()
                 and all(abs(levels[n] - v) <= p.replan_tolerance for n, v in self._levels.items())):
             return self._activity

@@ -11,16 +11,12 @@ Importing :mod:`hippo.envs` registers three environments::
 
 (``gym.make("hippo.envs:hippo/TwoRooms-v0")`` imports the module itself.)
 
-============================ ================================= ===================
-id                           task                              time limit
-============================ ================================= ===================
-``hippo/TwoRooms-v0``        SMC09's two rooms: reach the       3000 ticks (10 min)
-                             other room (+1)
-``hippo/PlacePreference-v0`` HIREL III-A: stand still in the    1200 ticks (4 min)
-                             goal zone for 7 s (+1, sound, end)
-``hippo/Patrol-v0``          HIREL III-B: wait at checkpoints   6000 ticks (20 min)
-                             1, 2, 3 in turn (+1 and sound each)
-============================ ================================= ===================
+- ``hippo/TwoRooms-v0``: SMC09's two rooms, +1 for reaching the other room; time limit
+  3000 ticks (10 min).
+- ``hippo/PlacePreference-v0``: HIREL III-A, stand still in the goal zone for 7 s (+1 with
+  the sound, and the episode ends); 1200 ticks (4 min).
+- ``hippo/Patrol-v0``: HIREL III-B, wait at checkpoints 1, 2, 3 in turn (+1 with the sound
+  at each); 6000 ticks (20 min).
 
 Observations are the robot's senses (:mod:`hippo.envs.robot`), actions normalised wheel speeds,
 ground truth only in ``info``. :class:`HippoCells` adds place-cell and time-cell activities.

@@ -2,17 +2,13 @@
 
 The observation is what the e-puck senses and nothing else (a :class:`gymnasium.spaces.Dict`):
 
-========== ============================== ================================================
-key        space                          meaning
-========== ============================== ================================================
-``ir``     ``Box(0, 1, (n,), float32)``   distance sensors (0 touching, 1 nothing in range)
-``floor``  ``Discrete(colours + 1)``      floor colour under the robot (0 = plain)
-``sound``  ``Discrete(2)``                the reward sound is heard this tick
-``moving`` ``Discrete(2)``                proprioception: the robot is translating
-``odometry`` ``Box(-b, b, (3,))``         wheel odometry of the tick: dx, dy (cm, robot
-                                          frame at the tick's start, within twice the
-                                          top speed × dt) and dθ (rad, within ±π)
-========== ============================== ================================================
+- ``ir`` ``Box(0, 1, (n,), float32)``: distance sensors (0 touching, 1 nothing in range);
+- ``floor`` ``Discrete(colours + 1)``: floor colour under the robot (0 = plain);
+- ``sound`` ``Discrete(2)``: the reward sound is heard this tick;
+- ``moving`` ``Discrete(2)``: proprioception, the robot is translating;
+- ``odometry`` ``Box(-b, b, (3,), float32)``: wheel odometry of the tick, dx and dy (cm, in
+  the robot's frame at the tick's start, within twice the top speed × dt) and dθ (rad,
+  within ±π).
 
 The action is a pair of wheel speeds normalised to ``[-1, 1]`` (left, right), scaled by the
 robot's top speed (5.08 cm/s for the e-puck); actions outside the box are clipped. One step is
@@ -80,6 +76,11 @@ class RobotEnv(gym.Env):
     # -- Gymnasium API ------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None
               ) -> tuple[dict[str, Any], dict[str, Any]]:
+        """Start an episode: ``(observation, info)``.
+
+        ``seed`` seeds :attr:`np_random` (only when given); ``options={"pose": (x, y,
+        heading)}`` starts the robot there instead of the task's start place.
+        """
         super().reset(seed=seed)
         options = options or {}
         unknown = set(options) - {"pose"}
@@ -97,6 +98,8 @@ class RobotEnv(gym.Env):
         return self._observation(obs), info
 
     def step(self, action: Any) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
+        """One control tick with wheel speeds ``action`` in [-1, 1]² (clipped):
+        ``(observation, reward, terminated, truncated, info)``."""
         if self._last is None:
             raise RuntimeError("call reset() before step()")
         a = np.asarray(action, dtype=float).reshape(-1)
@@ -110,6 +113,7 @@ class RobotEnv(gym.Env):
         return self._observation(obs), float(reward), bool(terminated), False, info
 
     def render(self) -> np.ndarray | None:
+        """The arena with the robot, ``(H, W, 3)`` uint8 (``render_mode="rgb_array"``)."""
         if self.render_mode is None:
             gym.logger.warn("render() called without a render_mode; "
                             "make the environment with render_mode='rgb_array'")
@@ -122,6 +126,7 @@ class RobotEnv(gym.Env):
         return self._renderer.frame(self.world.pose)
 
     def close(self) -> None:
+        """Release the figure used for rendering (safe to call twice)."""
         if self._renderer is not None:
             self._renderer.close()
             self._renderer = None

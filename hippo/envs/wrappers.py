@@ -111,6 +111,7 @@ class HippoCells(gym.Wrapper, gym.utils.RecordConstructorArgs):
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None
               ) -> tuple[dict[str, Any], dict[str, Any]]:
+        """Reset the environment and the cells (reservoir at 0, no winner, batteries silent)."""
         obs, info = self.env.reset(seed=seed, options=options)
         self.place_cells.reset_state()
         self.layer.reset(keep_states=True)
@@ -118,6 +119,7 @@ class HippoCells(gym.Wrapper, gym.utils.RecordConstructorArgs):
         return self._cells(obs, info), info
 
     def step(self, action: Any) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
+        """Step the environment, then the cells on what the robot sensed."""
         obs, reward, terminated, truncated, info = self.env.step(action)
         return self._cells(obs, info), reward, terminated, truncated, info
 

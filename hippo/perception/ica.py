@@ -12,7 +12,7 @@ kurtosis-based FastICA). Rows are kept orthonormal either all at once (symmetric
 
 Additions beyond the papers:
 
-* each unit's sign is chosen so that its **peak response is positive** (|max| >= |min| on the
+* each unit's sign is chosen so that its **peak response is positive** (``|max| >= |min|`` on the
   training data), as place cells fire positively;
 * ``n_restarts`` random initialisations, the best kept by an **unsupervised** score of the
   training outputs (``"kurtosis"``: Σ|excess kurtosis|, the objective the cube non-linearity

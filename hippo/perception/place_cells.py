@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import warnings
 from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
@@ -72,6 +73,14 @@ from hippo.perception.sfa import SFA, SFAMoments, SFAParams, chunk_bounds
 FORMAT = "hippo.perception.RCSFAICA/1"
 
 
+_RESERVOIR_NAMES = {"n_inputs": "n_inputs", "n_neurons": "n_reservoir", "leak": "leak",
+                    "spectral_radius": "spectral_radius", "input_weight": "input_weight",
+                    "input_prob": "input_prob", "seed": "seed"}
+_SFA_NAMES = {"n_components": "n_sfa", "cutoff": "sfa_cutoff", "expansion": "sfa_expansion"}
+_ICA_NAMES = {"n_components": "n_ica", "algorithm": "ica_algorithm", "max_iter": "ica_max_iter",
+              "tol": "ica_tol", "n_restarts": "ica_restarts", "score": "ica_score"}
+#: no fitted array holds a larger magnitude; a loaded one that does is damaged
+_MAX_ABS = 1e12
 _REQUIRED = ("format", "params", "sfa_mean", "sfa_scale", "sfa_W", "sfa_slowness", "ica_mean",
              "ica_whitening", "ica_rotation", "output_std", "output_peak")
 
@@ -81,6 +90,8 @@ class InputRangeWarning(RuntimeWarning):
 
 #: reservoir ticks per chunk when the harvest and the SFA moments run side by side
 _HARVEST_CHUNK = 2048
+#: a fit holds the reservoir states up to this size, and streams them beyond (``fit(stream=)``)
+_HOLD_BYTES = 256 * 2**20
 #: leak configurations harvested together by ``fit_leak_sweep``
 _SWEEP_BATCH = 16
 
@@ -142,10 +153,16 @@ class RCSFAICAParams:
         check_choice("out_of_range", self.out_of_range, ("error", "warn", "clip"))
         _np_dtype(self.dtype)
         _check_device(self.device)
-        # delegate the remaining checks to the layers' own parameter classes
-        self.reservoir_params()
-        self.sfa_params()
-        self.ica_params()
+        # delegate the remaining checks to the layers' own parameter classes, naming the
+        # RCSFAICA field in the message
+        for build, names in ((self.reservoir_params, _RESERVOIR_NAMES),
+                             (self.sfa_params, _SFA_NAMES), (self.ica_params, _ICA_NAMES)):
+            try:
+                build()
+            except ValueError as exc:
+                msg = str(exc)
+                ours = [o for theirs, o in names.items() if re.search(rf"\b{theirs}\b", msg)]
+                raise ValueError(f"{' / '.join(ours) or 'RCSFAICAParams'}: {msg}") from None
 
     def reservoir_params(self) -> ReservoirParams:
         return ReservoirParams(n_inputs=self.n_inputs, n_neurons=self.n_reservoir,
@@ -270,8 +287,18 @@ class RCSFAICA(ParamsEstimator):
         return Reservoir(p.reservoir_params(), dtype=p.dtype, device=p.device)
 
     # ------------------------------------------------------------------ learning
-    def fit(self, U: np.ndarray, y: None = None) -> RCSFAICA:
-        """Learn SFA then ICA on a recording ``U`` (T, n_inputs) of sensor values."""
+    def fit(self, U: np.ndarray, y: None = None, *, stream: bool | None = None) -> RCSFAICA:
+        """Learn SFA then ICA on a recording ``U`` (T, n_inputs) of sensor values.
+
+        ``stream``: never hold the whole reservoir state sequence (T, n_inputs + N). The
+        harvest is summarised chunk by chunk into the SFA moments, keeping only each chunk's
+        starting state; after SFA is solved the reservoir runs once more from those states and
+        each chunk is projected at once onto the ``n_sfa`` slow features, which are all ICA
+        sees. Peak memory is then flat in T (the cost: the reservoir runs twice). Same numbers
+        as the held fit to float rounding. Default (None): stream when the states would take
+        more than 256 MB. Applies to the linear SFA of a reservoir (the other forms hold
+        their features).
+        """
         U = self._check_U(U, fitting=True)
         self._check_trainable(U)
         p = self.params
@@ -280,37 +307,80 @@ class RCSFAICA(ParamsEstimator):
         Ud = self._decimator().offline(U)
         if self.reservoir_ is None or p.sfa_expansion != "linear":
             return self._fit_features(self.features(Ud, downsampled=True))
-        return self._fit_features(*self._harvest_summarised(Ud))
+        d = p.n_inputs + self.reservoir_.n_neurons
+        if stream is None:
+            stream = Ud.shape[0] * d * self.reservoir_.np_dtype().itemsize > _HOLD_BYTES
+        if stream:
+            return self._fit_streamed(Ud)
+        X, parts, _ = self._harvest_summarised(Ud)
+        return self._fit_features(X, parts)
 
-    def _harvest_summarised(self, Ud: np.ndarray) -> tuple[np.ndarray, list[SFAMoments]]:
+    def _harvest_summarised(self, Ud: np.ndarray, *, hold: bool = True
+                            ) -> tuple[np.ndarray | None, list[SFAMoments], list[tuple]]:
         """Features ``[u; x]`` of ``Ud`` and their SFA moments (after the washout), computed side
         by side: the reservoir runs chunk by chunk on this thread while a second thread adds each
         finished chunk to the moments (both with single-threaded BLAS). Same numbers as
-        ``features`` then ``SFA.accumulate``, in about the time of the harvest alone."""
+        ``features`` then ``SFA.accumulate``, in about the time of the harvest alone.
+
+        Also returns the chunks ``(t0, t1, x0)`` with the reservoir state each starts from.
+        With ``hold=False`` the features are not kept (None is returned for them): each chunk
+        lives until its moments are added, at most two chunks at a time."""
         p = self.params
         res = self.reservoir_
         n_u = p.n_inputs
         T = Ud.shape[0]
-        X = np.empty((T, n_u + res.n_neurons), dtype=res.np_dtype)
-        X[:, :n_u] = Ud
+        d = n_u + res.n_neurons
+        if hold:
+            X = np.empty((T, d), dtype=res.np_dtype)
+            X[:, :n_u] = Ud
         w = int(p.washout)
         split = SFA(p.sfa_params()).auto_split(T - w)
-        parts = [SFAMoments(X.shape[1]) for _ in range(1 if split is None else 2)]
-        bounds = sorted({0, *(w + b for b in chunk_bounds(T - w, X.shape[1], split=split,
+        parts = [SFAMoments(d) for _ in range(1 if split is None else 2)]
+        bounds = sorted({0, *(w + b for b in chunk_bounds(T - w, d, split=split,
                                                            rows=_HARVEST_CHUNK))})
         x = None
+        chunks = []
         with single_threaded_blas(), ThreadPoolExecutor(1) as pool:
             pending = []
             for t0, t1 in pairwise(bounds):
+                chunks.append((t0, t1, x))
                 S = res.run(Ud[t0:t1], x0=x)
-                X[t0:t1, n_u:] = S
-                x = S[-1]
+                if hold:
+                    F = X[t0:t1]
+                    F[:, n_u:] = S
+                else:
+                    F = np.empty((t1 - t0, d), dtype=res.np_dtype)
+                    F[:, :n_u] = Ud[t0:t1]
+                    F[:, n_u:] = S
+                x = S[-1].copy()
                 if t0 >= w:
                     part = parts[0 if split is None or t1 - w <= split else 1]
-                    pending.append(pool.submit(part.update, X[t0:t1]))
+                    if not hold and len(pending) >= 1:  # bound the chunks alive to two
+                        pending.pop(0).result()
+                    pending.append(pool.submit(part.update, F))
+                del S, F
             for job in pending:
                 job.result()
-        return X, parts
+        return (X if hold else None), parts, chunks
+
+    def _fit_streamed(self, Ud: np.ndarray) -> RCSFAICA:
+        """Fit without holding the state sequence (see ``fit(stream=True)``)."""
+        p = self.params
+        res = self.reservoir_
+        n_u, w = p.n_inputs, int(p.washout)
+        _, parts, chunks = self._harvest_summarised(Ud, hold=False)
+        self.sfa_ = SFA(p.sfa_params())
+        self.sfa_._prepare_shape(Ud.shape[0] - w, n_u + res.n_neurons)
+        self.sfa_._solve(parts, Ud.shape[0] - w)
+        Y = np.empty((Ud.shape[0] - w, int(p.n_sfa)))
+        with single_threaded_blas():  # the same chunks from the same states: the same states
+            for t0, t1, x0 in chunks:
+                if t0 < w:
+                    continue
+                F = np.concatenate([Ud[t0:t1].astype(res.np_dtype),
+                                    res.run(Ud[t0:t1], x0=x0)], axis=1)
+                Y[t0 - w:t1 - w] = self.sfa_._project(F)
+        return self._fit_slow(self.sfa_._sign(Y))
 
     def _fit_features(self, X: np.ndarray, moments: list[SFAMoments] | None = None) -> RCSFAICA:
         """Fit SFA and ICA on the features ``X`` (washout included); ``moments``, when given,
@@ -323,6 +393,11 @@ class RCSFAICA(ParamsEstimator):
         else:
             self.sfa_._prepare(X)
             Y = self.sfa_._fit_moments(moments, X)
+        return self._fit_slow(Y)
+
+    def _fit_slow(self, Y: np.ndarray) -> RCSFAICA:
+        """With SFA fitted: ICA on its training outputs ``Y`` (T, n_sfa), then the readout."""
+        p = self.params
         self.sfa_slowness_ = self.sfa_.slowness_.copy()
         self.ica_ = FastICA(p.ica_params())
         S = self.ica_.fit_transform(Y)
@@ -493,7 +568,7 @@ class RCSFAICA(ParamsEstimator):
             if key not in a:
                 raise CorruptFileError(f"lacks required array {key!r}")
             try:
-                return check_array(key, a[key], shape=shape, dtype=dtype)
+                return check_array(key, a[key], shape=shape, dtype=dtype, max_abs=_MAX_ABS)
             except ValueError as exc:
                 raise CorruptFileError(str(exc)) from None
 
@@ -528,7 +603,10 @@ class RCSFAICA(ParamsEstimator):
             d = d_in
         sfa.n_features_in_ = d_in
         sfa.mean_ = arr("sfa_mean", (d,))
-        sfa.scale_ = positive("sfa_scale", arr("sfa_scale", (d,)))
+        sfa.scale_ = arr("sfa_scale", (d,))
+        if not (sfa.scale_ > 1e-12 * (1.0 + np.abs(sfa.mean_))).all():
+            raise CorruptFileError("sfa_scale must be > 0 everywhere (above 1e-12 of the "
+                                   "feature's mean, as fit leaves it)")
         sfa.W_ = arr("sfa_W", (d, n_sfa))
         sfa.slowness_ = arr("sfa_slowness", (n_sfa,))
         cutoff = arr("sfa_cutoff", ()) if "sfa_cutoff" in a else np.array(np.nan)
@@ -544,6 +622,8 @@ class RCSFAICA(ParamsEstimator):
         ica.mean_ = arr("ica_mean", (n_sfa,))
         ica.whitening_ = arr("ica_whitening", (n_sfa, n_ica))
         ica.rotation_ = arr("ica_rotation", (n_ica, n_ica))
+        if not np.allclose(ica.rotation_ @ ica.rotation_.T, np.eye(n_ica), atol=1e-6):
+            raise CorruptFileError("ica_rotation is not orthonormal (FastICA's unmixing is)")
         ica.components_ = ica.rotation_ @ ica.whitening_.T
         ica.n_features_in_ = n_sfa
         output_std = positive("output_std", arr("output_std", (n_ica,)))

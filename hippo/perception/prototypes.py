@@ -140,8 +140,11 @@ class PlacePrototypes(ParamsEstimator):
                 float(check_array("recruit_threshold", d["recruit_threshold"], shape=())),
                 int(check_array("max_prototypes", d["max_prototypes"], shape=(), dtype="int")),
                 int(check_array("seed", d["seed"], shape=(), dtype="int")))
-            centres = check_array("centres", d["centres"], shape=(None, None))
-            sigma = check_positive("sigma", float(check_array("sigma", d["sigma"], shape=())))
+            centres = check_array("centres", d["centres"], shape=(None, None), max_abs=1e12)
+            sigma = check_positive("sigma", float(check_array("sigma", d["sigma"], shape=(),
+                                                              max_abs=1e12)))
+            if sigma < 1e-6:  # fit floors it there
+                raise ValueError(f"sigma must be >= 1e-6, got {sigma}")
             if not 1 <= len(centres) <= params.max_prototypes or centres.shape[1] < 1:
                 raise ValueError(f"centres has shape {centres.shape}: need 1 to max_prototypes="
                                  f"{params.max_prototypes} rows of >= 1 values")

@@ -240,8 +240,14 @@ class SFA(ParamsEstimator):
 
     def _prepare(self, X: np.ndarray) -> None:
         """Shape checks and the input scaling of the quadratic expansion."""
+        self._prepare_shape(*X.shape, X=X)
+
+    def _prepare_shape(self, T: int, d_in: int, X: np.ndarray | None = None) -> None:
+        """:meth:`_prepare` from the shape alone (the linear expansion needs no data: a
+        streamed fit never holds ``X``)."""
         n = int(self.params.n_components)
-        T, d_in = X.shape
+        if self.params.expansion == "quadratic" and X is None:
+            raise ValueError("the quadratic expansion needs the data to scale its input")
         if T < 3:
             raise ValueError(f"SFA needs at least 3 samples, got {T}")
         self.n_features_in_ = d_in
@@ -258,10 +264,22 @@ class SFA(ParamsEstimator):
     def _fit_moments(self, parts: list[SFAMoments], X: np.ndarray) -> np.ndarray:
         """Solve SFA from the moments of ``X`` (from :meth:`accumulate`); returns the training
         outputs."""
+        self._solve(parts, X.shape[0])
+        return self._sign(self._project(X))
+
+    def _sign(self, y: np.ndarray) -> np.ndarray:
+        """Sign-normalise the units on their training outputs ``y`` (positive skew); returns
+        the signed outputs."""
+        sign = np.where(np.mean(y ** 3, axis=0) < 0, -1.0, 1.0)
+        self.W_ = self.W_ * sign
+        return y * sign
+
+    def _solve(self, parts: list[SFAMoments], T: int) -> None:
+        """The slow directions ``W_`` (before :meth:`_sign`) from the moments of ``T`` samples."""
         n = int(self.params.n_components)
         total = parts[0] if len(parts) == 1 else parts[0].merged(parts[1])
-        if total.n != X.shape[0]:
-            raise ValueError(f"moments of {total.n} samples do not describe X ({X.shape[0]} rows)")
+        if total.n != T:
+            raise ValueError(f"moments of {total.n} samples do not describe X ({T} rows)")
         self.mean_ = total.mean
         sd = np.sqrt(np.maximum(np.diag(total.scatter) / total.n, 0.0))
         # constant columns: scale 1 (they become 0 and the cutoff drops them)
@@ -282,11 +300,7 @@ class SFA(ParamsEstimator):
                 f"{self.cutoff_:g} but n_sfa={n}; lower the cutoff or n_sfa")
         lam, W = _slow(S, A, n)
         self.W_ = W
-        y = self._project(X)
-        sign = np.where(np.mean(y ** 3, axis=0) < 0, -1.0, 1.0)
-        self.W_ = W * sign
         self.slowness_ = lam
-        return y * sign
 
     def _select_cutoff(self, parts: list[SFAMoments], inv: np.ndarray, n: int) -> float:
         first, rest = parts

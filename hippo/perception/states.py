@@ -522,7 +522,7 @@ class StateLayer:
                 self._candidate = new   # becomes the context once it has held the win
             else:
                 self._candidate = None  # an event state took over: the candidate never held
-        self.activity = {int(s): float(v) for s, v in zip(self._place_ids, pa)}
+        self.activity = dict(zip(self._place_ids.tolist(), pa.tolist()))
         if self._keys[self.winner].kind != "place":
             self.activity[self.winner] = self._event_level(self.winner, snd, col, mov)
         elif self.winner in self._clone_of:

@@ -194,6 +194,8 @@ ARENAS: dict[str, Callable[[], Arena]] = {
 
 def get(name: str) -> Arena:
     """Build an arena by name (``two-rooms``, ``maze-e1``, ``goal-arena``, ``patrol-course``)."""
+    if not isinstance(name, str):
+        raise ValueError(f"arena name must be a string ({', '.join(ARENAS)}), got {name!r}")
     key = name.replace("_", "-")
     if key == "maze":
         key = "maze-e1"

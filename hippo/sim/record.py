@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hippo._checks import check_array, check_positive
+from hippo._checks import check_array, check_int, check_positive
 from hippo.io import CorruptFileError, load_npz, save_npz
 from hippo.progress import Progress
 from hippo.sim import arenas as arena_registry
@@ -151,9 +151,7 @@ def record(arena: Arena | str, ticks: int, *, seed: int = 0, rho: float = 0.008,
     """
     if isinstance(arena, str):
         arena = arena_registry.get(arena)
-    ticks = int(ticks)
-    if ticks < 1:
-        raise ValueError(f"ticks must be >= 1, got {ticks}")
+    ticks = check_int("ticks", ticks, lo=1)
     world = World(arena, robot=robot, sensors=sensors, dt=dt, seed=seed)
     world.reset(seed, pose=start_pose)
     if controller is None:

@@ -65,6 +65,9 @@ def get_sensor_model(name: str | SensorModel) -> SensorModel:
     """Look up ``"ir8"`` / ``"ray17"`` (or pass a :class:`SensorModel` through)."""
     if isinstance(name, SensorModel):
         return name
+    if not isinstance(name, str):
+        raise ValueError(f"sensors must be a sensor model name ({', '.join(SENSOR_MODELS)}) or "
+                         f"a SensorModel, got {name!r}")
     try:
         return SENSOR_MODELS[name]
     except KeyError:

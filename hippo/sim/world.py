@@ -21,7 +21,7 @@ from typing import Any, Protocol
 import numpy as np
 import pymunk
 
-from hippo._checks import check_positive
+from hippo._checks import check_int, check_positive, check_seed
 from hippo.sim.arena import Arena
 from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
 from hippo.types import GroundTruth, Observation, wrap_angle
@@ -70,12 +70,18 @@ class World:
     def __init__(self, arena: Arena, robot: RobotParams | None = None,
                  sensors: str | SensorModel = "ir8", dt: float = 0.2, substeps: int = 5,
                  seed: int | None = 0) -> None:
+        if not isinstance(arena, Arena):
+            raise ValueError(f"arena must be an Arena (e.g. hippo.sim.arenas.get('two_rooms')), "
+                             f"got {arena!r:.80}")
+        if robot is not None and not isinstance(robot, RobotParams):
+            raise ValueError(f"robot must be RobotParams or None, got {type(robot).__name__}")
+        if seed is not None:
+            check_seed("seed", seed)
         self.arena = arena
         self.robot = robot or RobotParams()
         self.sensors = get_sensor_model(sensors)
         self.dt = check_positive("dt", dt)
-        if int(substeps) < 1:
-            raise ValueError(f"substeps must be >= 1, got {substeps}")
+        check_int("substeps", substeps, lo=1)
         # at most ~1 cm of travel per physics step, so contacts are resolved before the body
         # sinks into a wall (penetration is about one step's travel; 10x speed needs 11 steps)
         self.substeps = max(int(substeps), math.ceil(self.robot.speed_max * self.dt / 1.0))
@@ -244,9 +250,12 @@ class World:
     def step(self, action: tuple[float, float] | np.ndarray) -> Observation:
         """Apply wheel speeds ``(left, right)`` in cm/s for one control period."""
         try:
+            if len(action) != 2 or isinstance(action, str | bytes):
+                raise ValueError
             left, right = float(action[0]), float(action[1])
-        except (TypeError, IndexError, ValueError):
-            raise ValueError(f"action must be a pair of wheel speeds, got {action!r}") from None
+        except (TypeError, IndexError, ValueError, KeyError):
+            raise ValueError(f"action must be a pair (left, right) of wheel speeds in cm/s, "
+                             f"got {action!r}") from None
         if not (math.isfinite(left) and math.isfinite(right)):
             raise ValueError(f"wheel commands must be finite, got ({left}, {right})")
         for iv in self._interventions:

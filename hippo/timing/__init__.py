@@ -21,11 +21,17 @@ from hippo.timing.nlms import NLMS, NLMSParams, learning_modulation, nlms_update
 from hippo.timing.non_occurrence import NonOccurrence, NonOccurrenceParams
 from hippo.timing.satisfaction import Satisfaction, SatisfactionParams
 from hippo.timing.spectral import BatteryState, SpectralParams, SpectralTiming
-from hippo.timing.transitions import TransitionCells, TransitionParams, TransitionReadout
+from hippo.timing.transitions import (
+    DelayRangeWarning,
+    TransitionCells,
+    TransitionParams,
+    TransitionReadout,
+)
 
 __all__ = [
     "NLMS",
     "BatteryState",
+    "DelayRangeWarning",
     "NLMSParams",
     "NonOccurrence",
     "NonOccurrenceParams",

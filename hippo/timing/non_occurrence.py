@@ -31,7 +31,7 @@ import math
 from collections.abc import Hashable, Mapping
 from dataclasses import dataclass
 
-from hippo._checks import check_fields, check_finite, check_positive, check_range
+from hippo._checks import check_fields, check_positive, check_range
 
 __all__ = ["NonOccurrence", "NonOccurrenceParams"]
 
@@ -61,6 +61,17 @@ class NonOccurrenceParams:
         check_positive("rel_tolerance", self.rel_tolerance, allow_zero=True)
         check_positive("abs_tolerance", self.abs_tolerance, allow_zero=True)
         check_range("fall_fraction", self.fall_fraction, 0.0, 1.0, closed="neither")
+
+
+def _finite(key: Hashable, value: object) -> float:
+    """A prediction as a float, or ``ValueError`` naming its key (one scalar check per key)."""
+    try:
+        x = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise ValueError(f"prediction of {key!r} must be a number, got {value!r}") from None
+    if not math.isfinite(x):
+        raise ValueError(f"prediction of {key!r} is non-finite (NaN or inf): {x!r}")
+    return x
 
 
 class NonOccurrence:
@@ -106,8 +117,7 @@ class NonOccurrence:
         fired = []
         for key, value in predictions.items():
             timed = hasattr(value, "elapsed_fraction")
-            x = float(check_finite(f"prediction of {key!r}",
-                                   value.prediction if timed else value))  # type: ignore[union-attr]
+            x = _finite(key, value.prediction if timed else value)  # type: ignore[union-attr]
             peak = max(self.peak.get(key, -math.inf), x)
             self.peak[key] = peak
             if key in self._active:

@@ -6,7 +6,8 @@ Public API
 - :class:`SpectralTiming` — ``step(winner, dt) -> BatteryState``; ``reset()``;
   ``tuning(tau)`` (the battery at elapsed time ``tau``); ``battery(state)`` (zeros unless
   ``state`` is the current winner); ``readout(v)`` (population readout of a time, in seconds,
-  from battery activity *or* from learned synaptic weights over the battery).
+  from battery activity *or* from learned synaptic weights over the battery);
+  ``elapsed_readout()`` (the readout of the current battery, remembered per elapsed time).
 - :class:`BatteryState` — what one tick produced: current winner, its elapsed time and battery,
   and, at a sensory event, the previous state with its battery at the moment of the event
   (that battery is the conditioned stimulus the transition cells learn from).
@@ -95,7 +96,7 @@ def _calibration(timing: SpectralTiming) -> tuple[np.ndarray, np.ndarray]:
     p = timing.params
     if p not in _CALIBRATIONS:
         grid = np.geomspace(p.mu_min, p.mu_max, 4096)
-        codes = np.array([timing._code(x) for x in timing.tuning(grid)])
+        codes = timing._codes(timing.tuning(grid))
         codes = np.maximum.accumulate(codes)
         keep = np.concatenate(([True], np.diff(codes) > 1e-12))
         _CALIBRATIONS[p] = (codes[keep], grid[keep])
@@ -134,6 +135,8 @@ class SpectralTiming:
         self.mu = np.geomspace(p.mu_min, p.mu_max, int(p.n_cells))
         self.sigma = np.maximum(p.weber * self.mu, p.min_width)
         self._log_mu = np.log(self.mu)
+        self._cell_index = np.arange(self.mu.size)
+        self._elapsed_memo: dict[float, float] = {}
         self._cal_code, self._cal_tau = _calibration(self)
         self.reset()
 
@@ -153,7 +156,11 @@ class SpectralTiming:
         t = check_finite("tau", tau)
         if np.any(t < 0):
             raise ValueError(f"tau must be >= 0 (time since the state won), got {tau!r}")
-        return np.exp(-0.5 * ((t[..., None] - self.mu) / self.sigma) ** 2)
+        return self._tuning(t)
+
+    def _tuning(self, t: float | np.ndarray) -> np.ndarray:
+        """:meth:`tuning` without the checks (``t`` is finite and >= 0: the inner loop's own)."""
+        return np.exp(-0.5 * ((np.asarray(t)[..., None] - self.mu) / self.sigma) ** 2)
 
     def step(self, winner: int, dt: float) -> BatteryState:
         """Advance by ``dt`` seconds with ``winner`` as the state; restart at a change of winner.
@@ -165,16 +172,16 @@ class SpectralTiming:
         dt = check_positive("dt", dt)
         if self.state is None:  # first state ever: an event without a predecessor
             self.state, self.tau = winner, 0.0
-            self.activity = self.tuning(0.0)
+            self.activity = self._tuning(0.0)
             return BatteryState(winner, 0.0, self.activity, True)
         if winner == self.state:
             self.tau += dt
-            self.activity = self.tuning(self.tau)
+            self.activity = self._tuning(self.tau)
             return BatteryState(winner, self.tau, self.activity, False)
         previous, previous_tau = self.state, self.tau + dt
-        previous_activity = self.tuning(previous_tau)
+        previous_activity = self._tuning(previous_tau)
         self.state, self.tau = winner, 0.0
-        self.activity = self.tuning(0.0)
+        self.activity = self._tuning(0.0)
         return BatteryState(winner, 0.0, self.activity, True, previous, previous_tau,
                             previous_activity)
 
@@ -185,20 +192,53 @@ class SpectralTiming:
             return self.activity.copy()
         return np.zeros(self.n_cells)
 
-    def _code(self, v: np.ndarray) -> float:
-        """Weighted mean of log(mu) over the contiguous peak of ``v`` above a fraction of max."""
-        i = int(np.argmax(v))
-        vmax = float(v[i])
-        if not vmax > 0.0:
-            return math.nan
+    def _codes(self, v: np.ndarray) -> np.ndarray:
+        r"""Readout code of each row of ``v`` (k, n_cells); nan for a silent row.
+
+        For a row with peak cell :math:`i^*` and threshold :math:`\theta = f\,v_{i^*}`, the
+        cells :math:`[lo, hi]` of the contiguous run around :math:`i^*` with :math:`v_j > \theta`
+        give the code :math:`c = \sum_{j=lo}^{hi} (v_j - \theta)\log\mu_j /
+        \sum_{j=lo}^{hi} (v_j - \theta)`. All rows at once: ``lo`` is one past the last cell
+        at or below threshold left of the peak, ``hi`` one before the first such cell right of it.
+        """
+        v = np.atleast_2d(v)
+        k, m = v.shape
+        peak = v.argmax(axis=1)
+        vmax = v[np.arange(k), peak]
         th = self.params.readout_fraction * vmax
-        below = v <= th
-        left = np.flatnonzero(below[:i])
-        right = np.flatnonzero(below[i + 1:])
-        lo = int(left[-1]) + 1 if left.size else 0
-        hi = i + int(right[0]) if right.size else v.size - 1
-        w = v[lo:hi + 1] - th
-        return float(w @ self._log_mu[lo:hi + 1] / w.sum())
+        below = v <= th[:, None]
+        j = self._cell_index
+        left = below & (j < peak[:, None])
+        right = below & (j > peak[:, None])
+        lo = np.where(left, j, -1).max(axis=1) + 1
+        hi = np.where(right, j, m).min(axis=1) - 1
+        w = np.where((j >= lo[:, None]) & (j <= hi[:, None]), v - th[:, None], 0.0)
+        total = w.sum(axis=1)
+        silent = ~(vmax > 0.0)
+        total[silent] = 1.0
+        code = (w @ self._log_mu) / total
+        code[silent] = math.nan
+        return code
+
+    def _readouts(self, v: np.ndarray) -> np.ndarray:
+        """:meth:`readout` of each row of ``v`` (k, n_cells), unchecked: the inner loop's form."""
+        return np.interp(self._codes(v), self._cal_code, self._cal_tau)
+
+    def elapsed_readout(self) -> float:
+        """:meth:`readout` of the current battery: the winner's elapsed time as the cells tell it.
+
+        The battery is ``tuning(tau)``, so its readout depends on ``tau`` alone; the values are
+        remembered per ``tau`` (the battery clock repeats the same sums of ``dt`` after every
+        event), which takes the readout out of the per-tick cost. nan when no state has won.
+        """
+        if self.state is None:
+            return math.nan
+        got = self._elapsed_memo.get(self.tau)
+        if got is None:
+            if len(self._elapsed_memo) >= 65536:
+                self._elapsed_memo.clear()
+            got = self._elapsed_memo[self.tau] = float(self._readouts(self.activity)[0])
+        return got
 
     def readout(self, v: np.ndarray) -> float:
         """Population readout of a time (s) from a pattern over the cells; nan if ``v`` is silent.
@@ -210,7 +250,4 @@ class SpectralTiming:
         v = check_finite("pattern", v)
         if v.shape != (self.n_cells,):
             raise ValueError(f"pattern must have shape ({self.n_cells},), got {v.shape}")
-        code = self._code(v)
-        if math.isnan(code):
-            return math.nan
-        return float(np.interp(code, self._cal_code, self._cal_tau))
+        return float(self._readouts(v)[0])

@@ -12,6 +12,10 @@ Public API
 - :class:`TransitionReadout` — per transition and tick: ``prediction``, ``strength``,
   ``learned_delay`` (s), ``elapsed_fraction`` and the **delay-over** flag ``delay_over``.
 
+A delay longer than the battery's longest cell (``SpectralParams.mu_max``, default 120 s) cannot
+be timed: the event is still learned (its delay saturates near ``mu_max``) and a
+:class:`DelayRangeWarning` reports it.
+
 A transition is keyed by the tuple ``(a, b)`` of integer state ids everywhere (the cognitive map
 uses the same key). Transitions are recruited when first experienced; learning never stops.
 
@@ -42,6 +46,7 @@ Typical use by an agent::
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -50,9 +55,14 @@ from hippo._checks import check_fields, check_positive
 from hippo.timing.nlms import NLMSParams, learning_modulation, nlms_update
 from hippo.timing.spectral import BatteryState, SpectralTiming, check_state_id
 
-__all__ = ["TransitionCells", "TransitionParams", "TransitionReadout"]
+__all__ = ["DelayRangeWarning", "TransitionCells", "TransitionParams", "TransitionReadout"]
 
 Key = tuple[int, int]
+
+
+class DelayRangeWarning(RuntimeWarning):
+    """A transition took longer than the battery's longest time cell (``mu_max``): the delay
+    learned from it saturates near ``mu_max`` (HIREL's batteries span a finite range)."""
 
 
 @dataclass(frozen=True)
@@ -138,13 +148,17 @@ class TransitionCells:
         """Forget the current trial (and, unless ``keep_weights``, every learned transition)."""
         m = self.timing.n_cells
         if not keep_weights or not hasattr(self, "_w"):
+            # one row per transition, grown by doubling: W (R, m), its learned delay and
+            # strength, and the target state b of each row with that state's slot in m^US
             self._w = np.zeros((8, m))
+            self._delay = np.full(8, math.nan)
+            self._strength = np.zeros(8)
+            self._target = np.zeros(8, dtype=np.intp)
+            self._target_slot = np.zeros(8, dtype=np.intp)
             self._keys: list[Key] = []
             self._index: dict[Key, int] = {}
-            self._out: dict[int, list[int]] = {}
+            self._out: dict[int, np.ndarray] = {}   # state a -> rows of the transitions a -> *
             self._slot: dict[int, int] = {}
-            self._delay = np.zeros(8)
-            self._strength = np.zeros(8)
         self._m = np.zeros(max(len(self._slot), 8))
         self.state: int | None = None
         self.elapsed = math.nan
@@ -161,33 +175,51 @@ class TransitionCells:
     def _recruit(self, key: Key) -> int:
         row = len(self._keys)
         if row >= self._w.shape[0]:
+            grow = self._w.shape[0]
             self._w = np.concatenate([self._w, np.zeros_like(self._w)])
-            self._delay = np.concatenate([self._delay, np.zeros_like(self._delay)])
-            self._strength = np.concatenate([self._strength, np.zeros_like(self._strength)])
+            self._delay = np.concatenate([self._delay, np.full(grow, math.nan)])
+            self._strength, self._target, self._target_slot = (
+                np.concatenate([x, np.zeros(grow, dtype=x.dtype)])
+                for x in (self._strength, self._target, self._target_slot))
         self._keys.append(key)
         self._index[key] = row
-        self._out.setdefault(key[0], []).append(row)
+        self._target[row] = key[1]
+        self._target_slot[row] = self._state_slot(key[1])
+        self._out[key[0]] = np.append(self._out.get(key[0], np.zeros(0, dtype=np.intp)), row)
         return row
 
-    def _refresh(self, rows: list[int]) -> None:
-        """Re-read learned delay and strength of ``rows`` after their weights changed."""
-        for r in rows:
-            d = self.timing.readout(self._w[r])
-            self._delay[r] = d
-            self._strength[r] = 0.0 if math.isnan(d) else float(
-                self._w[r] @ self.timing.tuning(d))
+    def _refresh(self, rows: np.ndarray) -> None:
+        r"""Re-read the learned delay and strength of ``rows`` after their weights changed.
+
+        :math:`T_r = \mathrm{readout}(W_r)` (the population readout of the delay stored in the
+        synapses) and :math:`s_r = \sum_j W_{r,j} X_j(T_r)` (the prediction at that delay; 0
+        for a row whose weights are silent), for all rows at once.
+        """
+        w = self._w[rows]
+        d = self.timing._readouts(w)
+        ok = ~np.isnan(d)
+        s = np.zeros(d.size)
+        if ok.any():
+            s[ok] = np.einsum("rj,rj->r", w[ok], self.timing._tuning(d[ok]))
+        self._delay[rows] = d
+        self._strength[rows] = s
 
     # ------------------------------------------------------------------ learning
-    def _learn(self, rows: list[int], cs: np.ndarray, winner: int, dt: float) -> None:
+    def _learn(self, rows: np.ndarray, cs: np.ndarray, winner: int, dt: float) -> None:
+        r"""Eq. 1-2 on every transition out of the CS's state at once (``rows`` of W).
+
+        :math:`X^{US}_b = [b = \text{winner}]`, :math:`\eta_b = |X^{US}_b - m^{US}_b| + \sigma_2`
+        (``m^US`` already updated this tick), then one Euler step of eq. 1 on those rows. Rows
+        with :math:`\eta_b = 0` do not change, so only the others are re-read.
+        """
         p = self.params.nlms
-        targets = [self._keys[r][1] for r in rows]
-        us = np.array([1.0 if b == winner else 0.0 for b in targets])
-        m_us = self._m[[self._slot[b] for b in targets]]
-        eta = learning_modulation(us, m_us, p.sigma2)
-        if not np.any(eta > 0.0):
+        us = (self._target[rows] == winner).astype(float)
+        eta = learning_modulation(us, self._m[self._target_slot[rows]], p.sigma2)
+        learning = eta > 0.0
+        if not learning.any():
             return
         self._w[rows], _ = nlms_update(self._w[rows], cs, us, eta, p, dt)
-        self._refresh(rows)
+        self._refresh(rows[learning])
 
     def step(self, battery: BatteryState, dt: float) -> dict[Key, TransitionReadout]:
         """One tick: learn from the battery state, then read out the winner's transitions.
@@ -217,14 +249,20 @@ class TransitionCells:
             self._state_slot(a)
             if battery.previous_activity is None:
                 raise ValueError("battery.previous_activity is missing at an event")
+            if battery.previous_tau > self.timing.params.mu_max:
+                warnings.warn(
+                    f"transition {a}->{winner} came after {battery.previous_tau:.4g} s, beyond "
+                    f"the battery's longest cell (mu_max={self.timing.params.mu_max:g} s): its "
+                    "delay is learned as saturated near mu_max; raise SpectralParams.mu_max "
+                    "to time it", DelayRangeWarning, stacklevel=2)
             if winner != a and (a, winner) not in self._index:
                 self._recruit((a, winner))
-            rows = self._out.get(a, [])
-            if rows:
+            rows = self._out.get(a)
+            if rows is not None:
                 self._learn(rows, battery.previous_activity, winner, dt)
         else:
-            rows = self._out.get(winner, [])
-            if rows:
+            rows = self._out.get(winner)
+            if rows is not None:
                 self._learn(rows, battery.activity, winner, dt)
         self.state = winner
         self.readouts = self._read(winner, battery.activity)
@@ -232,23 +270,32 @@ class TransitionCells:
 
     # ------------------------------------------------------------------ readout
     def _read(self, a: int, activity: np.ndarray) -> dict[Key, TransitionReadout]:
-        rows = self._out.get(a, [])
-        if not rows:
+        """Read out every transition out of ``a`` at once.
+
+        ``X_ab = W_ab . X^a`` for all rows in one product; ``elapsed_fraction = tau_hat / T_ab``
+        and ``delay_over = [s_ab >= min_strength] and [tau_hat / T_ab >= 1 - lead / T_ab]``
+        as arrays, ``tau_hat`` the population readout of the battery (inf when it is silent).
+        """
+        rows = self._out.get(a)
+        if rows is None:
             self.elapsed = math.nan
             return {}
-        self.elapsed = self.timing.readout(activity)
-        if math.isnan(self.elapsed):  # a silent battery: longer than any cell can time
-            self.elapsed = math.inf
+        if activity is self.timing.activity:  # the battery of this tick (the usual case)
+            elapsed = self.timing.elapsed_readout()
+        else:
+            elapsed = float(self.timing._readouts(activity)[0])
+        if math.isnan(elapsed):  # a silent battery: longer than any cell can time
+            elapsed = math.inf
+        self.elapsed = elapsed
         preds = self._w[rows] @ activity
-        out = {}
+        d, s = self._delay[rows], self._strength[rows]
         lead = self.params.anticipation + self.params.latency
-        for r, x in zip(rows, preds):
-            d, s = float(self._delay[r]), float(self._strength[r])
-            frac = self.elapsed / d if d > 0 else math.nan
-            over = bool(s >= self.params.min_strength and frac >= 1.0 - lead / d)
-            key = self._keys[r]
-            out[key] = TransitionReadout(key, float(x), s, d, frac, over)
-        return out
+        frac = elapsed / d  # a row whose weights are silent has T = nan: frac nan, never over
+        over = (s >= self.params.min_strength) & (frac >= 1.0 - lead / d)
+        keys = self._keys
+        return {keys[r]: TransitionReadout(keys[r], x, si, di, f, o) for r, x, si, di, f, o in
+                zip(rows.tolist(), preds.tolist(), s.tolist(), d.tolist(), frac.tolist(),
+                    over.tolist())}
 
     def _check_key(self, key: Key) -> Key:
         if not isinstance(key, tuple) or len(key) != 2:
@@ -270,7 +317,7 @@ class TransitionCells:
         a = check_state_id("state", a)
         if a not in self._slot:
             raise ValueError(f"unknown state id {a}: these transition cells never saw it")
-        return [self._keys[r][1] for r in self._out.get(a, [])]
+        return [self._keys[r][1] for r in self._out.get(a, ())]
 
     def weights(self, key: Key) -> np.ndarray:
         """Copy of the weights of transition ``key`` (zeros if never experienced)."""
@@ -314,4 +361,4 @@ class TransitionCells:
         if a not in self._slot:
             raise ValueError(f"unknown state id {a}: these transition cells never saw it")
         x = self.timing.tuning(np.asarray(tau, dtype=float))
-        return {self._keys[r]: x @ self._w[r] for r in self._out.get(a, [])}
+        return {self._keys[r]: x @ self._w[r] for r in self._out.get(a, ())}

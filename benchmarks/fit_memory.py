@@ -1,0 +1,73 @@
+"""Peak memory of an RC-SFA-ICA fit against the length of the recording.
+
+Run: ``python benchmarks/fit_memory.py [--n 600] [--ticks 1e4 1e5 1e6] [--modes stream hold]``.
+
+Each fit runs in a fresh process (``resource.getrusage`` peak RSS is per process); the table
+gives the peak RSS of the whole process, the RSS once the recording is in memory (baseline:
+Python, numpy, the recording ``U`` (T, 8) in float64), the difference (what the fit itself
+needs), and the wall / process CPU time of the fit. ``stream``: ``fit(U, stream=True)``, the
+states are summarised chunk by chunk and never held; ``hold``: ``fit(U, stream=False)``, the
+whole state sequence (T, N + 8) float32 is held. The recording is a smooth synthetic 8-sensor
+signal (memory does not depend on what the sensors see). Target (issue 14): flat in T at
+N = 600 from 1e4 to 1e6 ticks; N = 2400 x 1e6 ticks in <= 2 GB.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import resource
+import subprocess
+import sys
+import time
+
+
+def child(n: int, T: int, mode: str) -> None:
+    import numpy as np
+
+    from hippo.perception.place_cells import RCSFAICA
+
+    rng = np.random.default_rng(0)
+    U = np.empty((T, 8))
+    for k in range(8):  # slow sinusoids + noise, built column by column
+        U[:, k] = 0.5 + 0.4 * np.sin(2 * np.pi * np.arange(T) / rng.uniform(300, 900)
+                                     + rng.uniform(0, 6))
+    U += 0.05 * rng.standard_normal(U.shape)
+    np.clip(U, 0.0, 1.0, out=U)
+    base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**10
+    w, c = time.perf_counter(), time.process_time()
+    RCSFAICA(n_reservoir=n, ica_restarts=2).fit(U, stream=(mode == "stream"))
+    wall, cpu = time.perf_counter() - w, time.process_time() - c
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**10
+    print(json.dumps({"n": n, "T": T, "mode": mode, "base_mb": base, "peak_mb": peak,
+                      "wall_s": wall, "cpu_s": cpu}))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--n", type=int, default=600)
+    ap.add_argument("--ticks", type=float, nargs="+", default=[1e4, 1e5, 1e6])
+    ap.add_argument("--modes", nargs="+", default=["stream", "hold"])
+    ap.add_argument("--hold-limit", type=float, default=2e5,
+                    help="skip 'hold' beyond this many ticks (its memory grows with T)")
+    ap.add_argument("--child", nargs=3, help=argparse.SUPPRESS)
+    a = ap.parse_args()
+    if a.child:
+        child(int(a.child[0]), int(a.child[1]), a.child[2])
+        return
+    print(f"N = {a.n}; MB of peak RSS; fit time wall (CPU)")
+    print(f"{'T':>9s} {'mode':>7s} {'peak':>8s} {'baseline':>9s} {'fit':>8s} {'time s':>14s}")
+    for T in (int(t) for t in a.ticks):
+        for mode in a.modes:
+            if mode == "hold" and T > a.hold_limit:
+                continue
+            out = subprocess.run([sys.executable, __file__, "--child", str(a.n), str(T), mode],
+                                 capture_output=True, text=True, check=True)
+            r = json.loads(out.stdout.strip().splitlines()[-1])
+            print(f"{T:9,d} {mode:>7s} {r['peak_mb']:8.0f} {r['base_mb']:9.0f} "
+                  f"{r['peak_mb'] - r['base_mb']:8.0f} {r['wall_s']:7.1f} ({r['cpu_s']:5.1f})",
+                  flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,185 @@
+"""Command-line arguments that are checked before any work starts.
+
+Each function here is an ``argparse`` ``type=``: it turns the text the user typed into a value
+or raises :class:`argparse.ArgumentTypeError` with one line that says what was typed and what
+is allowed (argparse adds the argument's name). :class:`Parser` prints that line alone (no
+usage block, no traceback) and exits with status 2; :class:`HelpFormatter` shows every
+option's default in ``--help``.
+
+Example::
+
+    parser = Parser(prog="hippo run two-rooms")
+    parser.add_argument("--ticks", type=integer(100), default=18120, help="control ticks")
+    parser.add_argument("--out", type=out_dir, default="out/two-rooms", help="output folder")
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+from collections.abc import Callable
+from pathlib import Path
+from typing import NoReturn
+
+#: exit status of a usage error (a bad argument) and of a failure while running
+USAGE_ERROR, FAILURE = 2, 1
+
+
+class Parser(argparse.ArgumentParser):
+    """An ``ArgumentParser`` whose errors are one line on stderr and exit status 2."""
+
+    def __init__(self, *args: object, **kwargs: object) -> None:
+        kwargs.setdefault("formatter_class", HelpFormatter)
+        super().__init__(*args, **kwargs)  # type: ignore[arg-type]
+
+    def error(self, message: str) -> NoReturn:
+        """One line (``prog: error: message (see --help)``), then exit with status 2."""
+        line = " ".join(message.split())
+        sys.stderr.write(f"{self.prog}: error: {line} (see {self.prog} --help)\n")
+        raise SystemExit(USAGE_ERROR)
+
+
+class HelpFormatter(argparse.RawDescriptionHelpFormatter):
+    """Keeps the description's line breaks and shows each option's default."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        if (action.default is not argparse.SUPPRESS and action.default is not None
+                and "%(default)" not in text and action.option_strings
+                and not isinstance(action, (argparse._HelpAction, argparse._StoreTrueAction,
+                                            argparse._StoreFalseAction))):
+            text = f"{text} (default: %(default)s)" if text else "(default: %(default)s)"
+        return text
+
+
+def _fmt(v: float) -> str:
+    return str(int(v)) if float(v).is_integer() and abs(v) < 1e15 else f"{v:g}"
+
+
+def _bounds(lo: float | None, hi: float | None, *, lo_open: bool = False,
+            hi_open: bool = False) -> str:
+    lo_s = None if lo is None else f"{'>' if lo_open else '>='} {_fmt(lo)}"
+    hi_s = None if hi is None else f"{'<' if hi_open else '<='} {_fmt(hi)}"
+    if lo is not None and hi is not None:
+        left, right = ("(" if lo_open else "["), (")" if hi_open else "]")
+        return f"in {left}{_fmt(lo)}, {_fmt(hi)}{right}"
+    return lo_s or hi_s or "any value"
+
+
+def _within(v: float, lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> bool:
+    if lo is not None and (v < lo or (lo_open and v == lo)):
+        return False
+    return not (hi is not None and (v > hi or (hi_open and v == hi)))
+
+
+def integer(lo: int | None = None, hi: int | None = None) -> Callable[[str], int]:
+    """An integer in ``[lo, hi]`` (either bound may be None)."""
+    allowed = f"an integer {_bounds(lo, hi)}".replace("an integer any value", "an integer")
+
+    def parse(text: str) -> int:
+        try:
+            v = int(text.strip().replace("_", ""))
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}") from None
+        if not _within(v, lo, hi, False, False):
+            raise argparse.ArgumentTypeError(f"got {v}; needs {allowed}")
+        return v
+
+    parse.__name__ = "integer"
+    return parse
+
+
+def number(lo: float | None = None, hi: float | None = None, *, lo_open: bool = False,
+           hi_open: bool = False, unit: str = "") -> Callable[[str], float]:
+    """A finite number in ``[lo, hi]`` (``lo_open``/``hi_open`` exclude a bound)."""
+    allowed = f"a number {_bounds(lo, hi, lo_open=lo_open, hi_open=hi_open)}"
+    allowed = allowed.replace("a number any value", "a finite number") + (
+        f" ({unit})" if unit else "")
+
+    def parse(text: str) -> float:
+        try:
+            v = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}") from None
+        if not math.isfinite(v) or not _within(v, lo, hi, lo_open, hi_open):
+            raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}")
+        return v
+
+    parse.__name__ = "number"
+    return parse
+
+
+def probability(text: str) -> float:
+    """A probability in [0, 1]."""
+    return number(0.0, 1.0)(text)
+
+
+def numbers(count: int | tuple[int, int] | None = None, lo: float | None = None,
+            hi: float | None = None, *, lo_open: bool = False, unit: str = ""
+            ) -> Callable[[str], list[float]]:
+    """Numbers separated by commas (``count`` of them, or between ``count[0]`` and
+    ``count[1]``), each in ``[lo, hi]``."""
+    one = number(lo, hi, lo_open=lo_open)
+    lo_n, hi_n = (count, count) if isinstance(count, int) else (count or (1, None))
+    how_many = (f"{lo_n}" if lo_n == hi_n else
+                f"{lo_n} or more" if hi_n is None else f"{lo_n} to {hi_n}")
+    allowed = (f"{how_many} comma-separated numbers "
+               f"{_bounds(lo, hi, lo_open=lo_open)}" + (f" ({unit})" if unit else ""))
+
+    def parse(text: str) -> list[float]:
+        parts = [p for p in text.split(",") if p.strip()]
+        try:
+            values = [one(p) for p in parts]
+        except argparse.ArgumentTypeError:
+            raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}") from None
+        if len(values) < lo_n or (hi_n is not None and len(values) > hi_n):
+            raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}")
+        return values
+
+    parse.__name__ = "numbers"
+    return parse
+
+
+def sfa_cutoff(text: str) -> float | str:
+    """The SFA whitening cutoff: a number in (0, 1), or ``auto``."""
+    if text.strip() == "auto":
+        return "auto"
+    try:
+        return number(0.0, 1.0, lo_open=True, hi_open=True)(text)
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(f"got {text!r}; needs a number in (0, 1), such as "
+                                         "1e-8, or 'auto'") from None
+
+
+def _first_existing(path: Path) -> Path:
+    p = path
+    while not p.exists() and p != p.parent:
+        p = p.parent
+    return p
+
+
+def out_dir(text: str) -> Path:
+    """An output folder: an existing folder, or one that can be created, writable."""
+    path = Path(text).expanduser()
+    if path.exists() and not path.is_dir():
+        raise argparse.ArgumentTypeError(f"{text!r} is a file, not a folder")
+    base = _first_existing(path.absolute())
+    if not base.is_dir():
+        raise argparse.ArgumentTypeError(f"cannot create {text!r}: {str(base)!r} is a file")
+    if not os.access(base, os.W_OK | os.X_OK):
+        raise argparse.ArgumentTypeError(f"cannot write to {text!r}: {str(base)!r} is not "
+                                         "writable")
+    return path
+
+
+def out_file(text: str) -> Path:
+    """An output file: not a folder, in a folder that exists or can be created, writable."""
+    path = Path(text).expanduser()
+    if path.is_dir():
+        raise argparse.ArgumentTypeError(f"{text!r} is a folder, not a file")
+    if path.exists() and not os.access(path, os.W_OK):
+        raise argparse.ArgumentTypeError(f"cannot write to {text!r}: the file is read-only")
+    out_dir(str(path.parent) if str(path.parent) else ".")
+    return path

@@ -1,0 +1,425 @@
+"""Grids of runs on Dask distributed: ``hippo sweep SCENARIO``.
+
+A sweep runs one scenario over a grid, seeds × parameter values, one *cell* per combination,
+on a Dask ``distributed`` cluster: a :class:`~distributed.LocalCluster` on this machine by
+default, or an existing cluster (``scheduler=ADDRESS``). Parameters are the scenario's own
+command-line options (``leak``, ``arena``, ``waits``, ``delay`` ...), given as the strings the
+command line would take, so whatever a scenario can run, a sweep can grid.
+
+Results
+-------
+``OUT/cells/<cell id>.json``
+    one file per finished cell, written atomically by the client as soon as the cell comes
+    back: scenario, seed, parameters, status (``ok`` / ``failed``), attempts, seconds, worker,
+    the error of a failed cell, and the scenario's metrics. A rerun skips cells whose file says
+    ``ok`` (resumable) and runs failed ones again.
+``OUT/cells/<cell id>/``
+    the scenario's own output folder (figures, metrics.json; on a remote cluster it is written
+    on the worker, so put ``OUT`` on a shared file system to keep them).
+``OUT/results.csv`` (and ``results.parquet`` with ``parquet=True``)
+    one row per cell, parameters and flattened metrics (``a.b`` for nested ones) as columns.
+``OUT/summary.png``
+    a chosen metric, mean ± sd over seeds, per parameter combination.
+
+Faults
+------
+A cell that raises is retried ``retries`` times by the scheduler; a cell whose worker dies is
+rescheduled on another worker (Dask's ``allowed-failures``). A scheduler plugin counts every start
+of a cell, so the attempts a cell took are reported even when a worker was lost. A cell
+that still fails is written with status ``failed`` and its error, listed at the end, and makes
+:func:`run_sweep` report it (the CLI exits with status 1): never silently dropped.
+
+Threads: each worker runs one cell at a time, with ``cores // workers`` BLAS threads
+(:func:`hippo._threads.blas_budget`), so a LocalCluster never oversubscribes the machine.
+
+Example::
+
+    hippo sweep two-rooms --seeds 0-3 --param leak 0.05,0.15 0.11,0.14 --workers 2 -- --quick
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import hashlib
+import io
+import itertools
+import json
+import math
+import os
+import socket
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from hippo._threads import blas_budget, blas_threads
+
+try:  # the optional extra hippo[sweep]
+    from distributed.diagnostics.plugin import SchedulerPlugin
+except ImportError:  # pragma: no cover - checked by run_sweep with a clear message
+    SchedulerPlugin = object  # type: ignore[assignment,misc]
+from hippo.io import atomic_write_text, load_json, save_json
+from hippo.progress import Progress
+
+__all__ = ["Cell", "SweepResult", "grid", "run_sweep", "scenario_task", "sweep_main"]
+
+#: name of the scheduler plugin that counts the starts of every cell
+PLUGIN_NAME = "hippo-sweep-starts"
+
+
+@dataclass(frozen=True)
+class Cell:
+    """One run of a sweep: a scenario, a seed and parameter values (scenario option -> text)."""
+
+    scenario: str
+    seed: int
+    params: tuple[tuple[str, str], ...] = ()
+    extra: tuple[str, ...] = ()
+
+    @property
+    def id(self) -> str:
+        """Stable name: readable parameters plus a hash of everything that defines the cell."""
+        text = json.dumps([self.scenario, self.seed, self.params, self.extra])
+        digest = hashlib.sha1(text.encode()).hexdigest()[:10]
+        return f"{self.scenario}-s{self.seed}-{digest}"
+
+    def argv(self, out: Path) -> list[str]:
+        """The scenario's command line for this cell, writing into ``out``."""
+        args = ["--out", str(out), "--seed", str(self.seed)]
+        for name, value in self.params:
+            args += [f"--{name}", value]
+        return args + list(self.extra)
+
+
+def grid(scenario: str, seeds: Sequence[int], params: Mapping[str, Sequence[str]] | None = None,
+         extra: Sequence[str] = ()) -> list[Cell]:
+    """Every combination of ``params`` values (option -> list of values) for every seed."""
+    params = dict(params or {})
+    for name, values in params.items():
+        if not values:
+            raise ValueError(f"parameter {name!r} has no values")
+    if not seeds:
+        raise ValueError("seeds must list at least one seed")
+    names = list(params)
+    combos = list(itertools.product(*(params[n] for n in names))) if names else [()]
+    return [Cell(scenario, int(s), tuple(zip(names, (str(v) for v in combo))), tuple(extra))
+            for combo in combos for s in seeds]
+
+
+def scenario_task(cell: Cell, out: str) -> dict[str, Any]:
+    """Run ``cell``'s scenario with its output in ``out``; returns the scenario's metrics."""
+    from hippo.runner import run_scenario
+
+    os.environ.setdefault("HIPPO_QUIET", "1")
+    return run_scenario(cell.scenario, cell.argv(Path(out)))
+
+
+def _run_cell(task: Callable[[Cell, str], Mapping[str, Any]], cell: Cell, out: str,
+              budgets: Mapping[str, Any]) -> dict[str, Any]:
+    """What a worker runs: log the start, run the task on its BLAS thread budget, time it."""
+    worker = ""
+    try:
+        from distributed import get_worker
+
+        worker = get_worker().address
+    except ValueError:  # not on a worker (a direct call)
+        pass
+    t0 = time.perf_counter()
+    # BLAS limits are process-wide: set them in a worker process of its own, never in
+    # worker threads that share the caller's process (processes=False), where they would race
+    own_process = _process_id() != budgets.get("client")
+    with blas_threads(budgets.get(worker, 1) if own_process else None):
+        metrics = task(cell, out)
+    return {"metrics": dict(metrics or {}), "seconds": time.perf_counter() - t0,
+            "worker": worker}
+
+
+@dataclass
+class SweepResult:
+    """What a sweep produced: rows of the table (one per cell) and the failed cells."""
+
+    out: Path
+    rows: list[dict[str, Any]] = field(default_factory=list)
+    failed: list[str] = field(default_factory=list)
+    skipped: int = 0
+    ran: int = 0
+
+    @property
+    def ok(self) -> bool:
+        return not self.failed
+
+
+def _flatten(d: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
+    """Scalars of a nested metrics dict as ``a.b`` keys (lists and arrays are left out)."""
+    out: dict[str, Any] = {}
+    for k, v in d.items():
+        key = f"{prefix}{k}"
+        if isinstance(v, Mapping):
+            out.update(_flatten(v, key + "."))
+        elif isinstance(v, (bool, int, float, str)) or v is None:
+            out[key] = v
+    return out
+
+
+def _record(cell: Cell, status: str, attempts: int, result: Mapping[str, Any] | None,
+            error: str = "") -> dict[str, Any]:
+    return {"cell": cell.id, "scenario": cell.scenario, "seed": cell.seed,
+            "params": dict(cell.params), "extra": list(cell.extra), "status": status,
+            "attempts": attempts, "error": error,
+            "seconds": None if result is None else result["seconds"],
+            "worker": "" if result is None else result["worker"],
+            "metrics": {} if result is None else result["metrics"]}
+
+
+def _row(rec: Mapping[str, Any], names: Sequence[str]) -> dict[str, Any]:
+    row = {"cell": rec["cell"], "scenario": rec["scenario"], "seed": rec["seed"]}
+    row.update({n: rec["params"].get(n, "") for n in names})
+    row.update({k: rec[k] for k in ("status", "attempts", "seconds", "worker", "error")})
+    row.update(_flatten(rec["metrics"]))
+    return row
+
+
+def _connect(scheduler: str | None, workers: int):
+    """A client of the cluster at ``scheduler``, or of a new LocalCluster (closed by the caller)."""
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        return Client(scheduler), None
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                           dashboard_address=":0")
+    return Client(cluster), cluster
+
+
+def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | None = None,
+              scheduler: str | None = None, client: Any = None, retries: int = 2,
+              task: Callable[[Cell, str], Mapping[str, Any]] = scenario_task,
+              metric: str | None = None, parquet: bool = False,
+              figure: bool = True) -> SweepResult:
+    """Run ``cells`` on a Dask cluster and gather their results under ``out``.
+
+    ``client``: an existing ``distributed.Client`` (else one is made: a LocalCluster of
+    ``workers`` single-threaded worker processes, default the usable cores, or the cluster at
+    ``scheduler``). ``retries``: extra attempts for a cell that raises. ``task(cell, out_dir)``
+    runs one cell and returns its metrics (default: the scenario, :func:`scenario_task`).
+    Cells already finished under ``out`` are skipped. Returns a :class:`SweepResult`; its
+    ``failed`` lists the cells that failed every attempt (also in the table).
+    """
+    try:
+        from distributed import as_completed
+    except ImportError:  # pragma: no cover - the core install
+        raise ImportError("hippo sweep needs Dask distributed: pip install 'hippo[sweep]'") \
+            from None
+    out = Path(out)
+    (out / "cells").mkdir(parents=True, exist_ok=True)
+    if int(retries) < 0:
+        raise ValueError(f"retries must be >= 0, got {retries}")
+    ids = [c.id for c in cells]
+    if len(set(ids)) != len(ids):
+        raise ValueError("the grid lists the same cell twice")
+    result = SweepResult(out)
+    todo = []
+    for c in cells:
+        path = out / "cells" / f"{c.id}.json"
+        if path.exists() and load_json(path).get("status") == "ok":
+            result.skipped += 1
+        else:
+            todo.append(c)
+    if todo:
+        own_client = own_cluster = None
+        if client is None:
+            from hippo._threads import n_workers, usable_cores
+
+            client, own_cluster = _connect(scheduler, n_workers(workers) if workers else
+                                           usable_cores())
+            own_client = client
+        try:
+            _execute(client, todo, out, task, int(retries), result, as_completed)
+        finally:
+            if own_client is not None:
+                own_client.close()
+            if own_cluster is not None:
+                own_cluster.close()
+    records = [load_json(out / "cells" / f"{i}.json") for i in ids
+               if (out / "cells" / f"{i}.json").exists()]
+    names = list(dict.fromkeys(n for c in cells for n, _ in c.params))
+    result.rows = [_row(r, names) for r in records]
+    result.failed = [r["cell"] for r in records if r["status"] != "ok"]
+    _write_table(result, parquet)
+    if figure and result.rows:
+        from hippo.plots.sweep import plot_sweep_summary
+
+        fig, _ = plot_sweep_summary(result.rows, names, metric=metric)
+        fig.savefig(out / "summary.png", dpi=120)
+        import matplotlib.pyplot as plt
+
+        plt.close(fig)
+    return result
+
+
+def _execute(client: Any, todo: Sequence[Cell], out: Path, task: Callable, retries: int,
+             result: SweepResult, as_completed: Callable) -> None:
+    budgets = _blas_budgets(client)
+    if not client.run_on_scheduler(_has_counter):
+        client.register_plugin(_StartCounter(), name=PLUGIN_NAME)
+    futures = {}
+    for c in todo:
+        f = client.submit(_run_cell, task, c, str(out / "cells" / c.id), budgets,
+                          key=f"hippo-cell-{c.id}-{time.time_ns()}", retries=retries, pure=False)
+        futures[f] = c
+    progress = Progress(len(todo), "sweep")
+    try:
+        for f in as_completed(list(futures)):
+            c = futures[f]
+            if f.status == "finished":
+                rec = _record(c, "ok", 0, f.result())
+            else:
+                err = f.exception()
+                rec = _record(c, "failed", 0, None, f"{type(err).__name__}: {err}")
+            rec["attempts"] = max(1, client.run_on_scheduler(_starts_on).get(f.key, 1))
+            save_json(out / "cells" / f"{c.id}.json", rec)
+            result.ran += 1
+            progress.update()
+    finally:
+        progress.close()
+
+
+def _process_id() -> str:
+    return f"{socket.gethostname()}:{os.getpid()}"
+
+
+def _blas_budgets(client: Any) -> dict[str, Any]:
+    """BLAS threads per worker: its machine's cores shared by the worker threads on it."""
+    info = client.scheduler_info().get("workers", {})
+    try:
+        cores = client.run(lambda: len(os.sched_getaffinity(0)))
+    except Exception:  # pragma: no cover - platforms without sched_getaffinity
+        return {"client": _process_id()}
+    per_host: dict[str, int] = {}
+    for addr, w in info.items():
+        host = w.get("host", addr)
+        per_host[host] = per_host.get(host, 0) + int(w.get("nthreads", 1))
+    budgets: dict[str, Any] = {addr: blas_budget(per_host[w.get("host", addr)],
+                                                 cores=cores.get(addr))
+                               for addr, w in info.items() if addr in cores}
+    budgets["client"] = _process_id()
+    return budgets
+
+
+class _StartCounter(SchedulerPlugin):
+    """Scheduler plugin: how often each cell's task was sent to a worker (a retry after an
+    error, or a reschedule after a lost worker, is another start). Counted on the scheduler,
+    so a worker killed mid-cell cannot lose the count."""
+
+    name = PLUGIN_NAME
+
+    def __init__(self) -> None:
+        self.starts: dict[str, int] = {}
+
+    def transition(self, key: Any, start: str, finish: str, *args: Any, **kwargs: Any) -> None:
+        if finish == "processing" and str(key).startswith("hippo-cell-"):
+            self.starts[str(key)] = self.starts.get(str(key), 0) + 1
+
+
+def _has_counter(dask_scheduler: Any = None) -> bool:
+    return PLUGIN_NAME in dask_scheduler.plugins
+
+
+def _starts_on(dask_scheduler: Any = None) -> dict[str, int]:
+    plugin = dask_scheduler.plugins.get(PLUGIN_NAME)
+    return dict(plugin.starts) if plugin is not None else {}
+
+
+def _write_table(result: SweepResult, parquet: bool) -> None:
+    cols: list[str] = list(dict.fromkeys(k for r in result.rows for k in r))
+    buf = io.StringIO()
+    writer = csv.DictWriter(buf, fieldnames=cols, lineterminator="\n")
+    writer.writeheader()
+    for r in result.rows:
+        writer.writerow({k: _cell_text(r.get(k)) for k in cols})
+    atomic_write_text(result.out / "results.csv", buf.getvalue())
+    if parquet:
+        import pandas as pd
+
+        tmp = result.out / ".results.parquet.tmp"
+        pd.DataFrame(result.rows, columns=cols).to_parquet(tmp)
+        os.replace(tmp, result.out / "results.parquet")
+
+
+def _cell_text(v: Any) -> Any:
+    if v is None or (isinstance(v, float) and math.isnan(v)):
+        return ""
+    return v
+
+
+# ---------------------------------------------------------------------- command line
+def _seeds(text: str) -> list[int]:
+    """``0-3`` or ``0,2,5`` (or both: ``0-3,10``)."""
+    seeds: list[int] = []
+    for part in text.split(","):
+        part = part.strip()
+        if not part:
+            continue
+        try:
+            if "-" in part[1:]:
+                a, b = part.split("-", 1) if not part.startswith("-") else (part, part)
+                seeds += range(int(a), int(b) + 1)
+            else:
+                seeds.append(int(part))
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"seeds must look like 0-3 or 0,2,5, got {text!r}") from None
+    if not seeds:
+        raise argparse.ArgumentTypeError(f"no seeds in {text!r}")
+    return seeds
+
+
+def sweep_main(argv: Sequence[str]) -> int:
+    """``hippo sweep SCENARIO [options] [-- scenario options for every cell]``."""
+    from hippo.runner import SCENARIOS, scenario_parser
+
+    argv = list(argv)
+    extra: list[str] = []
+    if "--" in argv:
+        i = argv.index("--")
+        argv, extra = argv[:i], argv[i + 1:]
+    ap = argparse.ArgumentParser(
+        prog="hippo sweep", description="Run a scenario over seeds x parameters on Dask "
+        "distributed (a LocalCluster unless --scheduler is given); resumable.",
+        epilog="Options after -- go to every cell's scenario (e.g. -- --quick).")
+    ap.add_argument("scenario", choices=sorted(SCENARIOS))
+    ap.add_argument("--seeds", type=_seeds, default=[0], help="e.g. 0-3 or 0,2,5 (default 0)")
+    ap.add_argument("--param", nargs="+", action="append", default=[], metavar=("NAME", "VALUE"),
+                    help="a scenario option and its values, e.g. --param leak 0.05,0.15 "
+                    "0.11,0.14 (repeat for more; the grid is every combination)")
+    ap.add_argument("--out", default=None, help="output folder (default out/sweep-SCENARIO)")
+    ap.add_argument("--workers", type=int, default=None,
+                    help="LocalCluster worker processes (default: the usable cores)")
+    ap.add_argument("--scheduler", default=None, help="address of an existing Dask scheduler")
+    ap.add_argument("--retries", type=int, default=2, help="extra attempts of a failing cell")
+    ap.add_argument("--metric", default=None, help="metric of the summary figure")
+    ap.add_argument("--parquet", action="store_true", help="also write results.parquet")
+    a = ap.parse_args(argv)
+    params: dict[str, list[str]] = {}
+    parser, _ = scenario_parser(a.scenario)
+    known = {s.lstrip("-") for act in parser._actions for s in act.option_strings}
+    for item in a.param:
+        name, values = item[0].lstrip("-"), item[1:]
+        if name not in known or name in ("out", "seed"):
+            ap.error(f"--param {name}: not an option of scenario {a.scenario!r} "
+                     f"(choose from: {', '.join(sorted(known - {'out', 'seed', 'h', 'help'}))})")
+        if not values:
+            ap.error(f"--param {name} needs at least one value")
+        params[name] = values
+    cells = grid(a.scenario, a.seeds, params, extra)
+    out = Path(a.out or f"out/sweep-{a.scenario}")
+    res = run_sweep(cells, out, workers=a.workers, scheduler=a.scheduler, retries=a.retries,
+                    metric=a.metric, parquet=a.parquet)
+    print(f"{len(cells)} cells: {res.ran} run, {res.skipped} already done, "
+          f"{len(res.failed)} failed; table {out / 'results.csv'}")
+    for cid in res.failed:
+        rec = load_json(out / "cells" / f"{cid}.json")
+        print(f"  FAILED {cid} (seed {rec['seed']}, {rec['params']}) after {rec['attempts']} "
+              f"attempt(s): {rec['error']}")
+    return 0 if res.ok else 1

@@ -1,0 +1,161 @@
+"""hippo sweep: grids on Dask distributed, resumable, retried, never dropping a cell."""
+
+from __future__ import annotations
+
+import csv
+import os
+import signal
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+distributed = pytest.importorskip("distributed")
+
+from hippo._threads import blas_budget  # noqa: E402
+from hippo.io import load_json  # noqa: E402
+from hippo.sweep import Cell, _seeds, grid, run_sweep, sweep_main  # noqa: E402
+
+
+def square_task(cell: Cell, out: str) -> dict:
+    """A cell that computes a known answer from its seed and parameters."""
+    p = dict(cell.params)
+    Path(out).mkdir(parents=True, exist_ok=True)
+    with open(Path(out) / "ran", "a") as f:  # how often this cell ran
+        f.write("x")
+    if p.get("mode") == "broken":
+        raise RuntimeError(f"broken cell {cell.seed}")
+    if p.get("mode") == "flaky" and (Path(out) / "ran").read_text() == "x":
+        raise RuntimeError("fails on its first attempt only")
+    return {"value": cell.seed * float(p.get("gain", 1.0)), "nested": {"half": cell.seed / 2},
+            "trace": [1, 2, 3]}
+
+
+def slow_task(cell: Cell, out: str) -> dict:
+    time.sleep(1.5)
+    return {"value": float(cell.seed)}
+
+
+@pytest.fixture(scope="module")
+def client():
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as c:
+        yield c
+
+
+def test_grid_is_every_combination_for_every_seed():
+    cells = grid("two-rooms", [0, 1, 2], {"leak": ["0.05,0.15", "0.11,0.14"], "delay": ["7"]},
+                 ["--quick"])
+    assert len(cells) == 6 and len({c.id for c in cells}) == 6
+    assert {(c.seed, dict(c.params)["leak"]) for c in cells} == {
+        (s, leak) for s in (0, 1, 2) for leak in ("0.05,0.15", "0.11,0.14")}
+    c = cells[0]
+    assert c.argv(Path("o")) == ["--out", "o", "--seed", "0", "--leak", "0.05,0.15",
+                                 "--delay", "7", "--quick"]
+    assert c.id == grid("two-rooms", [0], {"leak": ["0.05,0.15"], "delay": ["7"]},
+                        ["--quick"])[0].id  # stable across runs: resumable
+    with pytest.raises(ValueError, match="leak"):
+        grid("two-rooms", [0], {"leak": []})
+    assert _seeds("0-3,7") == [0, 1, 2, 3, 7]
+
+
+def test_blas_budget_never_oversubscribes():
+    for cores in (1, 2, 8):
+        for workers in (1, 2, 3, 8):
+            b = blas_budget(workers, cores=cores)
+            assert b >= 1 and (workers * b <= cores or b == 1)
+    assert blas_budget(1, cores=2) == 2 and blas_budget(2, cores=2) == 1
+    with pytest.raises(ValueError, match="workers"):
+        blas_budget(0)
+
+
+def test_sweep_gathers_a_table_and_resumes(tmp_path, client):
+    cells = grid("demo", [0, 1, 2], {"gain": ["1", "3"]})
+    res = run_sweep(cells, tmp_path, client=client, task=square_task)
+    assert res.ok and res.ran == 6 and res.skipped == 0
+    with open(tmp_path / "results.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == 6
+    assert {"seed", "gain", "status", "value", "nested.half"} <= set(rows[0])
+    assert "trace" not in rows[0]  # lists are not columns
+    for r in rows:
+        assert float(r["value"]) == int(r["seed"]) * float(r["gain"])
+        assert r["status"] == "ok" and r["attempts"] == "1"
+    assert (tmp_path / "summary.png").stat().st_size > 0
+    # a rerun skips every finished cell: nothing runs again
+    again = run_sweep(cells, tmp_path, client=client, task=square_task)
+    assert again.ran == 0 and again.skipped == 6 and len(again.rows) == 6
+    assert all((tmp_path / "cells" / c.id / "ran").read_text() == "x" for c in cells)
+    # a grown grid runs only the new cells
+    more = run_sweep(grid("demo", [0, 1, 2, 3], {"gain": ["1", "3"]}), tmp_path,
+                     client=client, task=square_task, parquet=True)
+    assert more.ran == 2 and more.skipped == 6 and len(more.rows) == 8
+    assert (tmp_path / "results.parquet").exists()
+
+
+def test_failed_cells_are_retried_and_reported(tmp_path, client):
+    cells = grid("demo", [0, 1], {"mode": ["ok", "flaky", "broken"]})
+    res = run_sweep(cells, tmp_path, client=client, task=square_task, retries=2)
+    by_mode = {}
+    for r in res.rows:
+        by_mode.setdefault(r["mode"], []).append(r)
+    assert all(r["status"] == "ok" and r["attempts"] == 1 for r in by_mode["ok"])
+    assert all(r["status"] == "ok" and r["attempts"] == 2 for r in by_mode["flaky"])
+    broken = by_mode["broken"]
+    assert all(r["status"] == "failed" and r["attempts"] == 3 for r in broken)
+    assert all("broken cell" in r["error"] for r in broken)
+    assert sorted(res.failed) == sorted(r["cell"] for r in broken) and not res.ok
+    assert len(res.rows) == 6  # nothing dropped
+    # a rerun runs the failed cells again, and only them
+    again = run_sweep(cells, tmp_path, client=client, task=square_task, retries=0)
+    assert again.ran == 2 and again.skipped == 4
+
+
+def test_cli_names_a_bad_parameter(capsys):
+    with pytest.raises(SystemExit):
+        sweep_main(["timing-demo", "--param", "no-such-option", "1"])
+    assert "no-such-option" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_cli_sweep_of_a_real_scenario(tmp_path, capsys):
+    out = tmp_path / "sw"
+    code = sweep_main(["timing-demo", "--seeds", "0-1", "--param", "delay", "2", "--workers",
+                       "2", "--out", str(out), "--", "--quick", "--reproductions", "1"])
+    assert code == 0
+    rows = list(csv.DictReader(open(out / "results.csv")))
+    assert len(rows) == 2 and all(r["status"] == "ok" for r in rows)
+    assert "1 cells" not in capsys.readouterr().out
+    assert all(load_json(out / "cells" / f"{r['cell']}.json")["metrics"] for r in rows)
+
+
+@pytest.mark.slow
+def test_killing_a_worker_loses_no_cell(tmp_path):
+    import cloudpickle
+
+    cloudpickle.register_pickle_by_value(sys.modules[__name__])
+    cells = grid("demo", list(range(8)))
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as c:
+        import threading
+
+        def kill_one():
+            deadline = time.time() + 60
+            while time.time() < deadline:  # once cells are running, kill a busy worker
+                busy = [w for w, tasks in c.processing().items() if tasks]
+                if busy:  # SIGKILL: the worker process is lost mid-cell
+                    pid = c.run(os.getpid, workers=[busy[0]])[busy[0]]
+                    os.kill(pid, signal.SIGKILL)
+                    return
+                time.sleep(0.1)
+
+        killer = threading.Thread(target=kill_one)
+        killer.start()
+        res = run_sweep(cells, tmp_path, client=c, task=slow_task)
+        killer.join()
+    assert res.ok and len(res.rows) == 8
+    assert sorted(r["value"] for r in res.rows) == list(range(8))
+    assert max(r["attempts"] for r in res.rows) >= 2  # the lost cell ran again, and it shows

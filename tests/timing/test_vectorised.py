@@ -1,0 +1,139 @@
+"""The vectorised timing layer equals a plain, one-transition-at-a-time reference.
+
+The transition cells learn and read out every transition of the winner with one array
+operation; the spectral readout decodes all rows of a weight matrix at once. Here both are run
+side by side with a plain form written row by row from the equations (HIREL eq. 1-3 and the
+population readout of :class:`SpectralTiming`), on random winner sequences.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from hippo.timing import SpectralTiming, TransitionCells, TransitionParams
+from hippo.timing.nlms import learning_modulation, nlms_update
+from hippo.timing.transitions import TransitionReadout
+
+
+def plain_code(timing: SpectralTiming, v: np.ndarray) -> float:
+    """Weighted mean of log(mu) over the contiguous run above threshold around the peak."""
+    i = int(np.argmax(v))
+    vmax = float(v[i])
+    if not vmax > 0.0:
+        return math.nan
+    th = timing.params.readout_fraction * vmax
+    lo = i
+    while lo > 0 and v[lo - 1] > th:
+        lo -= 1
+    hi = i
+    while hi < v.size - 1 and v[hi + 1] > th:
+        hi += 1
+    w = v[lo:hi + 1] - th
+    return float(np.sum(w * np.log(timing.mu[lo:hi + 1])) / np.sum(w))
+
+
+def plain_readout(timing: SpectralTiming, v: np.ndarray) -> float:
+    c = plain_code(timing, v)
+    return math.nan if math.isnan(c) else float(np.interp(c, timing._cal_code, timing._cal_tau))
+
+
+class PlainTransitionCells(TransitionCells):
+    """The same cells, with learning, re-reading and readout done one transition at a time."""
+
+    def _refresh(self, rows: np.ndarray) -> None:
+        for r in rows:
+            d = plain_readout(self.timing, self._w[r])
+            self._delay[r] = d
+            self._strength[r] = 0.0 if math.isnan(d) else float(
+                np.sum(self._w[r] * self.timing.tuning(d)))
+
+    def _learn(self, rows: np.ndarray, cs: np.ndarray, winner: int, dt: float) -> None:
+        p = self.params.nlms
+        changed = []
+        for r in rows:
+            b = self._keys[r][1]
+            us = np.array([1.0 if b == winner else 0.0])
+            eta = learning_modulation(us, self._m[[self._slot[b]]], p.sigma2)
+            if eta[0] > 0.0:
+                w, _ = nlms_update(self._w[[r]], cs, us, eta, p, dt)
+                self._w[r] = w[0]
+                changed.append(r)
+        self._refresh(np.array(changed, dtype=int))
+
+    def _read(self, a: int, activity: np.ndarray) -> dict:
+        rows = self._out.get(a)
+        if rows is None:
+            self.elapsed = math.nan
+            return {}
+        self.elapsed = plain_readout(self.timing, activity)
+        if math.isnan(self.elapsed):
+            self.elapsed = math.inf
+        out = {}
+        lead = self.params.anticipation + self.params.latency
+        for r in rows:
+            d, s = float(self._delay[r]), float(self._strength[r])
+            frac = self.elapsed / d if d > 0 else math.nan
+            over = bool(s >= self.params.min_strength and frac >= 1.0 - lead / d)
+            x = float(np.sum(self._w[r] * activity))
+            out[self._keys[r]] = TransitionReadout(self._keys[r], x, s, d, frac, over)
+        return out
+
+
+def test_codes_of_many_rows_equal_the_plain_code():
+    timing = SpectralTiming()
+    rng = np.random.default_rng(3)
+    taus = rng.uniform(0.0, 150.0, 40)
+    rows = [timing.tuning(t) * rng.uniform(0.1, 3.0) for t in taus]
+    rows += [rng.random(timing.n_cells) for _ in range(20)]          # ragged patterns
+    rows += [np.zeros(timing.n_cells), -rng.random(timing.n_cells)]  # silent ones
+    rows += [timing.tuning(5.0) + timing.tuning(40.0)]               # two bumps
+    V = np.array(rows)
+    got = timing._codes(V)
+    want = np.array([plain_code(timing, v) for v in V])
+    np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-12)
+    assert np.isnan(got[-3]) and np.isnan(got[-2])
+    for v, g in zip(V, timing._readouts(V)):
+        w = plain_readout(timing, v)
+        assert (math.isnan(g) and math.isnan(w)) or g == pytest.approx(w, rel=1e-12)
+
+
+def test_elapsed_readout_is_the_readout_of_the_battery():
+    timing = SpectralTiming()
+    assert math.isnan(timing.elapsed_readout())
+    for winner in [1] * 30 + [2] * 5 + [1] * 30:
+        timing.step(winner, 0.2)
+        assert timing.elapsed_readout() == timing.readout(timing.activity)
+        assert timing.elapsed_readout() == pytest.approx(max(timing.tau, 0.2), rel=2e-3)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_vectorised_transition_cells_equal_the_plain_ones(seed: int):
+    rng = np.random.default_rng(seed)
+    fast_t, plain_t = SpectralTiming(), SpectralTiming()
+    params = TransitionParams(latency=0.4)
+    fast, plain = TransitionCells(fast_t, params), PlainTransitionCells(plain_t, params)
+    winner, fired = 0, 0
+    for _ in range(3000):
+        if rng.random() < 0.08:  # dwell ~2.5 s, among 6 states (many shared successors)
+            winner = int(rng.integers(6))
+        rf = fast.step(fast_t.step(winner, 0.2), 0.2)
+        rp = plain.step(plain_t.step(winner, 0.2), 0.2)
+        assert rf.keys() == rp.keys()
+        for k in rf:
+            a, b = rf[k], rp[k]
+            assert a.delay_over == b.delay_over
+            fired += a.delay_over
+            for name in ("prediction", "strength", "learned_delay", "elapsed_fraction"):
+                x, y = getattr(a, name), getattr(b, name)
+                assert (math.isnan(x) and math.isnan(y)) or x == pytest.approx(
+                    y, rel=1e-10, abs=1e-12), name
+        assert fast.elapsed == pytest.approx(plain.elapsed, rel=1e-12) or (
+            math.isnan(fast.elapsed) and math.isnan(plain.elapsed))
+    assert fast.transitions == plain.transitions and len(fast.transitions) > 20
+    assert fired > 0  # the comparison covered the delay-over flag rising
+    for k in fast.transitions:
+        np.testing.assert_allclose(fast.weights(k), plain.weights(k), rtol=1e-10, atol=1e-13)
+        assert fast.successors(k[0]) == plain.successors(k[0])
