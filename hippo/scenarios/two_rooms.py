@@ -17,7 +17,8 @@ recordings for reuse.
 
 Ceiling (``--ceiling``, default; ``--no-ceiling`` skips it): a supervised ridge read-out of
 the same reservoir state ``[u; x]`` (room A vs B, 5 blocked folds in time,
-:func:`~hippo.perception.metrics.ridge_ceiling`) shows what the sensors allow next to what the unsupervised room cell reaches.
+:func:`~hippo.perception.metrics.ridge_ceiling`) shows what the sensors allow next to what
+the unsupervised room cell reaches.
 
 Faults (``--faults``): sensors die (stuck at 0, stuck at 1, or noise only; 0-3 of the 8) or
 all get noisier (s.d. 0.01-0.1) at the start of the test part; the room cell chosen on clean
