@@ -38,6 +38,7 @@ import numpy as np
 
 from hippo._checks import check_fields, check_finite, check_positive
 from hippo.cognitive_map import Action, DriveParams, Drives, Planner, PlannerParams, TransitionGraph
+from hippo.cognitive_map.localise import LocaliserParams, MapLocaliser
 from hippo.decision import Decider
 from hippo.perception.states import StateEvent, StateLayer, StateLayerParams
 from hippo.places import PlaceSource
@@ -60,6 +61,10 @@ class BrainParams:
         many consecutive ticks of it, so a stall at a corner is not a stop.
     settle_time: after being lifted the robot explores this long (s) before it trusts its
         place state again (learned place cells need a few seconds to recover; SMC09 Fig. 7).
+    relocalise: after being lifted, explore until the map recognises the place changes the
+        robot sees (:class:`~hippo.cognitive_map.localise.MapLocaliser`) instead of for
+        ``settle_time``; None (default): ``settle_time``. Learned place cells can stay on the
+        old place for 5-13 s of movement after a kidnap (goal arena, seed 0).
     move_timeout, move_margin, default_delay: a move is abandoned (the robot explores) after
         ``move_timeout`` × its learned delay + ``move_margin`` s; a move the map has no delay
         for counts as ``default_delay`` s.
@@ -95,6 +100,7 @@ class BrainParams:
     still_turn: float = 0.15
     proprio_ticks: int = 2
     settle_time: float = 6.0
+    relocalise: LocaliserParams | None = None
     move_timeout: float = 3.0
     move_margin: float = 5.0
     default_delay: float = 5.0
@@ -205,6 +211,7 @@ class Brain:
         self._moving = True
         self._flip = 0
         self._settle_until = -math.inf
+        self.localiser = None if p.relocalise is None else MapLocaliser(p.relocalise)
         self._clear_view: np.ndarray | None = None
         self._reset_episode()
 
@@ -241,6 +248,9 @@ class Brain:
         self._reset_episode()
         self.decide.lifted()
         self._settle_until = self.t + self.p.settle_time
+        if self.localiser is not None:
+            self.localiser.reset(self.t)
+            self._settle_until = math.inf   # until the map recognises where the robot is
 
     def reward(self, drive: str) -> None:
         """An external satisfaction of ``drive``: linked to the next transition performed."""
@@ -294,6 +304,11 @@ class Brain:
         ev = seen.event
         self.readouts = seen.timing.readouts
         self.non_occurrence = seen.timing.omitted  # type: ignore[assignment]
+        if self.t < self._settle_until and self.localiser is not None:
+            if ev.changed and self.layer.key(ev.winner).kind == "place":
+                self.localiser.observe(ev.winner, self.t, self.graph)
+            if self.localiser.check(self.t):
+                self._settle_until = self.t  # re-localised: decide from this tick on
         if self.t < self._settle_until:
             self.decide.mode = Mode.EXPLORE
             return self._tick(ev.changed, settling=True)

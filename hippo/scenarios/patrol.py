@@ -39,6 +39,7 @@ from enum import IntEnum
 import numpy as np
 
 from hippo.agent import Agent, AgentParams
+from hippo.cli_args import integer, number, numbers
 from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
@@ -70,26 +71,20 @@ class Phase(IntEnum):
     KIDNAP = 6
 
 
-def _waits(text: str) -> list[float]:
-    try:
-        w = [float(v) for v in text.split(",") if v.strip()]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"--waits takes numbers separated by commas, got "
-                                         f"{text!r}") from None
-    if len(w) != 3 or not all(math.isfinite(v) and 0.5 <= v <= 120 for v in w):
-        raise argparse.ArgumentTypeError(f"--waits needs three waits between 0.5 and 120 s, "
-                                         f"got {text!r}")
-    return w
-
-
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--waits", type=_waits, default=[24.1, 19.1, 11.6],
-                        help="checkpoint waits in s (default: HIREL's 24.1,19.1,11.6)")
-    parser.add_argument("--loops", type=int, default=5, help="autonomous patrol loops")
-    parser.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned")
-    parser.add_argument("--explore-min", type=float, default=30.0, help="exploration, minutes")
-    parser.add_argument("--units", type=int, default=24, help="ICA units of the place cells")
-    parser.add_argument("--places", type=int, default=32,
+    parser.add_argument("--waits", type=numbers(3, 0.5, 120.0, unit="s"),
+                        default=[24.1, 19.1, 11.6],
+                        help="the three checkpoint waits in s, comma-separated (HIREL's)")
+    parser.add_argument("--loops", type=integer(1, 100), default=5,
+                        help="autonomous patrol loops")
+    parser.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned",
+                        help="learned from the robot's sensors, or Gaussian fields on the true "
+                             "position (to measure what learning costs)")
+    parser.add_argument("--explore-min", type=number(5.0, 600.0), default=30.0,
+                        help="exploration, simulated minutes")
+    parser.add_argument("--units", type=integer(1, 200), default=24,
+                        help="ICA units of the place cells")
+    parser.add_argument("--places", type=integer(1, 500), default=32,
                         help="place prototypes read out from the ICA units (learned cells)")
 
 

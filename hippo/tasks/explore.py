@@ -19,7 +19,7 @@ from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
 from hippo.perception.states import StateLayerParams
 from hippo.places import GroundTruthPlaceCells, LearnedPlaceCells, PlaceSource
-from hippo.progress import Progress
+from hippo.progress import Progress, working
 from hippo.seeds import Seeds
 from hippo.sim.arena import Arena
 from hippo.sim.controllers import WallFollower, WallFollowerParams
@@ -126,7 +126,8 @@ def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: 
         raise ValueError(f"place cells must be 'learned' or 'ground-truth', got {kind!r}")
     model = RCSFAICA(n_reservoir=400, leak=(0.1, 0.3), spectral_radius=0.9, n_sfa=units,
                      n_ica=units, ica_restarts=3, seed=seed)
-    Y = model.fit_transform(sensors)
-    protos = PlacePrototypes(PrototypeParams(n_prototypes=n_places, seed=seed)).fit(Y)
+    with working("fitting place cells"):
+        Y = model.fit_transform(sensors)
+        protos = PlacePrototypes(PrototypeParams(n_prototypes=n_places, seed=seed)).fit(Y)
     model.reset_state()
     return LearnedPlaceCells(model, protos)
