@@ -122,3 +122,15 @@ def cached_recording(cache: str | Path | None, key: str, build: Callable[[], Rec
     path.parent.mkdir(parents=True, exist_ok=True)
     rec.save(path)
     return rec
+
+
+def parse_leak(text: str) -> tuple[float, ...]:
+    """``"0.05,0.15"`` -> ``(0.05, 0.15)``: one leak rate or one per group of neurons."""
+    try:
+        vals = tuple(float(v) for v in str(text).split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--leak takes comma-separated numbers, got {text!r}"
+                                         ) from None
+    if not vals or not all(0.0 < v <= 1.0 for v in vals):
+        raise argparse.ArgumentTypeError(f"leak rates must lie in (0, 1], got {text!r}")
+    return vals

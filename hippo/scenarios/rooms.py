@@ -41,12 +41,12 @@ from hippo.scenarios._common import (
     add_seeds_argument,
     cached_recording,
     mean_sd,
+    parse_leak,
     prepare_out,
     seed_list,
     sfa_cutoff,
     write_metrics,
 )
-from hippo.scenarios.two_rooms import parse_leak
 from hippo.sim.flats import random_flat, room_names
 from hippo.sim.record import Recording, record
 

@@ -54,6 +54,7 @@ from hippo.scenarios._common import (
     add_seeds_argument,
     cached_recording,
     mean_sd,
+    parse_leak,
     prepare_out,
     seed_list,
     sfa_cutoff,
@@ -74,18 +75,6 @@ KIDNAP_BACK = (400, 980)    # test ticks: put back where it was taken from
 TARGETS = {"room_cell_test_balanced_accuracy": 0.97, "kidnap_recovery_ticks": 15}
 SWEEP_SLOW = (0.03, 0.05, 0.08, 0.11)     # leak of the first half of the neurons
 SWEEP_FAST = (0.14, 0.15, 0.2, 0.3)       # leak of the second half
-
-
-def parse_leak(text: str) -> tuple[float, ...]:
-    """``"0.05,0.15"`` -> ``(0.05, 0.15)``: one leak rate or one per group of neurons."""
-    try:
-        vals = tuple(float(v) for v in str(text).split(","))
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"--leak takes comma-separated numbers, got {text!r}"
-                                         ) from None
-    if not vals or not all(0.0 < v <= 1.0 for v in vals):
-        raise argparse.ArgumentTypeError(f"leak rates must lie in (0, 1], got {text!r}")
-    return vals
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
