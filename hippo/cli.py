@@ -13,12 +13,11 @@ line on stderr and exit status 2. A failure while running is one line and exit s
 
 from __future__ import annotations
 
-import argparse
 import os
 import sys
 from collections.abc import Sequence
 
-from hippo.cli_args import FAILURE, USAGE_ERROR, Parser
+from hippo.cli_args import FAILURE, USAGE_ERROR, Parser, integer, out_file, probability
 from hippo.runner import (
     DESCRIPTIONS,
     SCENARIOS,
@@ -35,33 +34,35 @@ __all__ = ["DESCRIPTIONS", "SCENARIOS", "main", "parse_scenario_args", "record_m
 def record_main(argv: Sequence[str]) -> int:
     """``hippo record ARENA --ticks N --rho R --sensors ir8 --seed S --out run.npz``."""
     from hippo.sim import arenas as arena_registry
-    from hippo.sim.record import record
 
-    p = argparse.ArgumentParser(prog="hippo record",
-                                description="Record a wall-following run to .npz")
-    p.add_argument("arena", help=f"one of: {', '.join(arena_registry.ARENAS)}")
-    p.add_argument("--ticks", type=int, default=18120)
-    p.add_argument("--rho", type=float, default=0.008)
-    p.add_argument("--sensors", default="ir8", choices=["ir8", "ray17"])
-    p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--out", default="run.npz")
+    p = Parser(prog="hippo record",
+               description="Record a wall-following run (SMC09's explorer) to .npz: what the "
+                           "robot sensed, and apart, where it truly was.")
+    p.add_argument("arena", choices=list(arena_registry.ARENAS), metavar="ARENA",
+                   help=f"one of: {', '.join(arena_registry.ARENAS)}")
+    p.add_argument("--ticks", type=integer(1, 10_000_000), default=18120,
+                   help="control ticks of 0.2 s")
+    p.add_argument("--rho", type=probability, default=0.008,
+                   help="probability per tick of switching the followed wall")
+    p.add_argument("--sensors", default="ir8", choices=["ir8", "ray17"],
+                   help="ir8: the e-puck of SMC09; ray17: ICANN09's 17 rays")
+    p.add_argument("--seed", type=integer(0, 2**32 - 1), default=0, help="random seed")
+    p.add_argument("--out", type=out_file, default="run.npz", help="the .npz file to write")
     p.add_argument("--figure", action="store_true", help="also write a trajectory PNG")
     a = p.parse_args(list(argv))
-    try:
-        arena = arena_registry.get(a.arena)
-    except ValueError as exc:
-        p.error(str(exc))
+    from hippo.sim.record import record
+
+    arena = arena_registry.get(a.arena)
     rec = record(arena, a.ticks, seed=a.seed, rho=a.rho, sensors=a.sensors)
+    a.out.parent.mkdir(parents=True, exist_ok=True)
     path = rec.save(a.out)
     print(f"wrote {len(rec)} ticks to {path}", file=sys.stderr)
     if a.figure:
-        from pathlib import Path
-
         from hippo.io import save_figure
         from hippo.plots.sim import plot_trajectory
 
         fig, _ = plot_trajectory(arena, rec)
-        png = Path(a.out).with_suffix(".png")
+        png = a.out.with_suffix(".png")
         save_figure(fig, png, dpi=120)
         print(f"wrote {png}", file=sys.stderr)
     return 0

@@ -184,6 +184,8 @@ def _flag(name: str, value: object) -> bool | None:
 def _colour(value: object) -> int | None:
     if value is None:
         return None
+    if type(value) is int and value >= 0:  # the usual case, checked without numpy
+        return None if value == 0 else value
     if isinstance(value, (bool, np.bool_)):
         raise ValueError(f"colour must be an integer colour id, got {value!r}")
     v = float(check_finite("colour", value))

@@ -45,40 +45,72 @@ from typing import Any
 
 import numpy as np
 
+from hippo.cli_args import integer, number, probability
+from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
 from hippo.io import save_figure, save_npz
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
 from hippo.progress import Progress
-from hippo.scenarios._common import mean_sd, prepare_out, sfa_cutoff, write_metrics
+from hippo.scenarios._common import (
+    add_cache_argument,
+    add_seeds_argument,
+    cached_recording,
+    mean_sd,
+    prepare_out,
+    seed_list,
+    sfa_cutoff,
+    write_metrics,
+)
 from hippo.sim import arenas
 from hippo.sim.record import record
 
 TARGETS = {"localized_units": 62, "location_decoding_accuracy_test": 0.80}
+#: the shortest recording, and the fewest reservoir samples after down-sampling
+MIN_TICKS, MIN_SAMPLES = 5000, 200
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--ticks", type=int, default=350_000, help="recorded control ticks")
-    parser.add_argument("--rho", type=float, default=0.0,
-                        help="wall-side switch probability (default %(default)s: a full tour)")
-    parser.add_argument("--downsample", type=int, default=25,
+    parser.add_argument("--ticks", type=integer(MIN_TICKS, 100_000_000), default=350_000,
+                        help=f"recorded control ticks of 0.2 s (at least {MIN_TICKS})")
+    parser.add_argument("--rho", type=probability, default=0.0,
+                        help="wall-side switch probability (0: a full tour)")
+    parser.add_argument("--downsample", type=integer(1, 1000), default=25,
                         help="input down-sampling factor (ICANN09: 50 for a 2x slower tour; "
-                             "default %(default)s keeps its ~260 samples per maze tour)")
-    parser.add_argument("--neurons", type=int, default=400, help="reservoir size")
-    parser.add_argument("--units", type=int, default=70, help="SFA and ICA units")
-    parser.add_argument("--leak", type=float, default=0.6, help="reservoir leak rate")
-    parser.add_argument("--seeds", type=int, default=1,
-                        help="reservoirs to repeat over (seeds seed, seed+1, ...)")
-    parser.add_argument("--ica-restarts", type=int, default=3)
+                             "25 keeps its ~260 samples per maze tour)")
+    parser.add_argument("--neurons", type=integer(1, 20_000), default=400, help="reservoir size")
+    parser.add_argument("--units", type=integer(1, 500), default=70, help="SFA and ICA units")
+    parser.add_argument("--leak", type=number(0.0, 1.0, lo_open=True), default=0.6,
+                        help="reservoir leak rate")
+    add_seeds_argument(parser, "reservoirs to repeat over (the exploration run is --seed's)")
+    add_cache_argument(parser)
+    parser.add_argument("--ceiling", action=argparse.BooleanOptionalAction, default=True,
+                        help="also report the supervised ceiling (ridge on the reservoir state)")
+    parser.add_argument("--ica-restarts", type=integer(1, 1000), default=3,
+                        help="FastICA restarts, best kept by --ica-score (no labels)")
     parser.add_argument("--ica-score", default="kurtosis",
-                        choices=["kurtosis", "sparseness", "slowness"])
-    parser.add_argument("--sfa-cutoff", default="1e-6",
-                        help="relative whitening cutoff, or 'auto' (default: %(default)s; "
-                             "the SFA default 1e-8 gives ~2 fewer localized units here)")
-    parser.add_argument("--threshold", type=float, default=M.ICANN09_THRESHOLD,
+                        choices=["kurtosis", "sparseness", "slowness"],
+                        help="label-free score that picks the ICA restart")
+    parser.add_argument("--sfa-cutoff", type=cli_sfa_cutoff, default="1e-6",
+                        help="relative whitening cutoff in (0, 1), or 'auto' (the SFA default "
+                             "1e-8 gives ~2 fewer localized units here)")
+    parser.add_argument("--threshold", type=number(0.0, 1000.0, lo_open=True),
+                        default=M.ICANN09_THRESHOLD,
                         help="localization threshold in training s.d. (ICANN09: 4.5)")
-    parser.add_argument("--ablation", type=int, default=1, choices=[0, 1],
+    parser.add_argument("--ablation", action=argparse.BooleanOptionalAction, default=True,
                         help="also fit the no-reservoir, quadratic-SFA ablation")
-    parser.add_argument("--figures", type=int, default=1, choices=[0, 1], help="write PNGs")
+    parser.add_argument("--figures", action=argparse.BooleanOptionalAction, default=True,
+                        help="write PNGs")
+
+
+def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
+    """Checks across arguments, before any work."""
+    if args.ticks // args.downsample < MIN_SAMPLES:
+        parser.error(f"argument --ticks: {args.ticks} ticks down-sampled by {args.downsample} "
+                     f"leave {args.ticks // args.downsample} samples; at least {MIN_SAMPLES} "
+                     "are needed (more ticks or a smaller --downsample)")
+    if args.units > args.neurons + 17:
+        parser.error(f"argument --units: {args.units} exceeds the {args.neurons + 17} inputs "
+                     "of SFA (--neurons + 17 rays)")
 
 
 def _analyse(model: RCSFAICA, U: np.ndarray, labels: np.ndarray, n_train: int,
@@ -124,6 +156,17 @@ def _analyse(model: RCSFAICA, U: np.ndarray, labels: np.ndarray, n_train: int,
     }
 
 
+def _ceiling(model: RCSFAICA, U: np.ndarray, res: dict[str, Any], nb: np.ndarray,
+             n_loc: int) -> dict[str, float]:
+    """The supervised ceiling of location decoding: a ridge read-out of the same reservoir
+    state (at the down-sampled rate), 5 blocked folds in time."""
+    X = model.features(U)
+    c = M.ridge_ceiling(X, res["_lab"], n_loc, folds=5, gap=20)
+    return {"ceiling_location_decoding_accuracy": c.accuracy,
+            "ceiling_location_decoding_within_one_step": float(np.mean(nb[c.predicted,
+                                                                           res["_lab"]]))}
+
+
 def _stats(values: list[float]) -> dict[str, Any]:
     mean, sd = mean_sd(values)
     return {"mean": mean, "sd": sd, "per_seed": [float(v) for v in values]}
@@ -141,7 +184,9 @@ def run(args: argparse.Namespace) -> dict:
     n_loc = len(arena.locations)
     nb = M.location_neighbors(arena.locations, walls=arena.wall_array())
     t0 = time.perf_counter()
-    rec = record(arena, ticks, seed=args.seed, rho=args.rho, sensors="ray17", desc="maze")
+    rec = cached_recording(args.cache, f"maze_t{ticks}_rho{args.rho:g}_s{args.seed}",
+                           lambda: record(arena, ticks, seed=args.seed, rho=args.rho,
+                                          sensors="ray17", desc="maze"))
     t_rec = time.perf_counter() - t0
     U = rec.sensors
     n_train = (ticks * 5 // 6) // f * f
@@ -153,23 +198,26 @@ def run(args: argparse.Namespace) -> dict:
     variants: dict[str, list[dict[str, Any]]] = {"rc_sfa_ica": [], "no_reservoir_quadratic": []}
     keep: dict[str, dict[str, Any]] = {}
     fit_s: dict[str, list[float]] = {k: [] for k in variants}
-    jobs = [("rc_sfa_ica", i) for i in range(args.seeds)]
+    seeds = seed_list(args)
+    jobs = [("rc_sfa_ica", s) for s in seeds]
     if args.ablation:
-        jobs.append(("no_reservoir_quadratic", 0))  # deterministic up to the ICA seed
+        jobs.append(("no_reservoir_quadratic", seeds[0]))  # deterministic up to the ICA seed
     with Progress(len(jobs), "maze fits") as bar:
-        for name, i in jobs:
+        for name, seed in jobs:
             if name == "rc_sfa_ica":
                 model = RCSFAICA.icann09(n_reservoir=neurons, leak=args.leak,
-                                         seed=args.seed + i, **common)
+                                         seed=seed, **common)
             else:
                 model = RCSFAICA.icann09(use_reservoir=False, sfa_expansion="quadratic",
-                                         seed=args.seed + i, **common)
+                                         seed=seed, **common)
             t1 = time.perf_counter()
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ICAConvergenceWarning)
                 model.fit(U[:n_train])
             fit_s[name].append(time.perf_counter() - t1)
             res = _analyse(model, U, labels, n_train, nb, n_loc, args.threshold)
+            if name == "rc_sfa_ica" and args.ceiling:
+                res.update(_ceiling(model, U, res, nb, n_loc))
             if name not in keep:
                 keep[name] = res
                 if name == "rc_sfa_ica":
@@ -189,7 +237,7 @@ def run(args: argparse.Namespace) -> dict:
         "downsample": f, "samples": ticks // f, "neurons": neurons, "units": units,
         "leak": args.leak, "rho": args.rho, "ica_restarts": restarts,
         "ica_score": args.ica_score, "threshold": args.threshold,
-        "reservoir_seeds": [args.seed + i for i in range(args.seeds)],
+        "reservoir_seeds": seeds, "recording_seed": args.seed,
         "locations_visited_train": int(np.unique(labels[:n_train]).size),
         "locations_visited_test": int(np.unique(labels[n_train:]).size),
         "cm_per_tick": float(np.mean(np.hypot(np.diff(rec.x), np.diff(rec.y)))),
@@ -223,7 +271,15 @@ def run(args: argparse.Namespace) -> dict:
     save_npz(out / "run.npz", arrays)
     if args.figures:
         _figures(out, arena, rec, keep, args.threshold, n_loc)
-    write_metrics(out, metrics)
+    write_metrics(out, metrics, summary=(
+        f"maze ({len(seeds)} reservoir(s)): {metrics['localized_units']:.1f} of {units} units "
+        f"localized; location decoded on the test part "
+        f"{metrics['location_decoding_accuracy_test']:.2f} exactly, "
+        f"{metrics['location_decoding_within_one_step_test']:.2f} within one step"
+        + (f"; without the reservoir {metrics['ablation_localized_units']:.1f} units, "
+           f"{metrics['ablation_location_decoding_accuracy_test']:.2f}" if args.ablation else "")
+        + f" (targets: {TARGETS['localized_units']} units, "
+        f"{TARGETS['location_decoding_accuracy_test']})"))
     return metrics
 
 
