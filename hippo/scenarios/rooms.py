@@ -190,8 +190,7 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
     lab_k = room_labels(run, rooms)
     dec_k = _nearest_centroid(Yk, cent)
     correct = (dec_k == lab_k) | (lab_k < 0)
-    real = [e for e in events if 0 < e < len(run)
-            and lab_k[e] >= 0 and room_labels(run, rooms)[e - 1] != lab_k[e]]
+    real = [e for e in events if 0 < e < len(run) and lab_k[e] >= 0 and lab_k[e - 1] != lab_k[e]]
     rec_t = M.recovery_times(correct, real, hold=args.hold)
     fin = rec_t[np.isfinite(rec_t)]
     out.update(kidnap_events=len(real),
