@@ -51,9 +51,9 @@ html_title = f"hippo {release}"
 # -- hippo's informal parameter lists --------------------------------------------------------
 # Many docstrings (parameter dataclasses above all) list fields as ``name: text`` lines whose
 # text continues on indented lines, or as a table of ````name````  text. Read as reST, that is
-# a paragraph followed by an unexpected indent. This turns each such item into a field of a
-# field list (``:name: text``), which is what the author meant, leaving literal blocks and
-# directives alone.
+# a paragraph followed by an unexpected indent. This turns each such item into an entry of a
+# definition list (the name as code, the text indented below it), which is what the author
+# meant, leaving literal blocks and directives alone.
 _ITEM = re.compile(r"^(?P<ind>\s*)(?P<name>[A-Za-z_]\w*(?:, [A-Za-z_]\w*)*):\s+(?P<text>\S.*)$")
 _CODE_ITEM = re.compile(r"^(?P<ind>\s*)(?P<name>``[^`]+``)\s{2,}(?P<text>\S.*)$")
 
@@ -80,8 +80,9 @@ def _fields(lines: list[str]) -> list[str]:
             continue
         m = None if blank else (_ITEM.match(line) or _CODE_ITEM.match(line))
         if m and (prev_blank or item_indent == len(m["ind"])):
-            ind = m["ind"]
-            out.append(f"{ind}:{m['name']}: {m['text']}")
+            ind, name = m["ind"], m["name"]
+            term = name if name.startswith("``") else f"``{name}``"
+            out.extend([f"{ind}{term}", f"{ind}    {m['text']}"])
             item_indent = len(ind)
             prev_blank = False
             continue

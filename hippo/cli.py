@@ -13,119 +13,56 @@ line on stderr and exit status 2. A failure while running is one line and exit s
 
 from __future__ import annotations
 
-import argparse
-import importlib
 import os
-import re
 import sys
 from collections.abc import Sequence
-from types import ModuleType
-from typing import Any
 
-from hippo.cli_args import FAILURE, USAGE_ERROR, Parser, integer, out_dir
+from hippo.cli_args import FAILURE, USAGE_ERROR, Parser, integer, out_file, probability
+from hippo.runner import (
+    DESCRIPTIONS,
+    SCENARIOS,
+    _scenario_name,
+    parse_scenario_args,
+    run_scenario,
+    scenario_parser,
+)
 
-#: scenario name -> module implementing it
-SCENARIOS: dict[str, str] = {
-    "demo": "hippo.scenarios.demo",
-    "two-rooms": "hippo.scenarios.two_rooms",
-    "maze": "hippo.scenarios.maze",
-    "timing-demo": "hippo.scenarios.timing_demo",
-    "place-preference": "hippo.scenarios.place_preference",
-    "patrol": "hippo.scenarios.patrol",
-    "rooms": "hippo.scenarios.rooms",
-}
-#: scenario name -> what it does, in one line (``hippo list``)
-DESCRIPTIONS: dict[str, str] = {
-    "demo": "drive the robot with SMC09's wall follower in an arena; plot its path and sensors",
-    "two-rooms": "SMC09: place cells learned from 8 IR sensors in two rooms; room cell and "
-                 "recovery from kidnapping",
-    "maze": "ICANN09: 70 place cells learned in a big maze; localized units and decoding",
-    "timing-demo": "time cells and NLMS transition cells learn delays and reproduce them "
-                   "(HIREL Table I)",
-    "place-preference": "HIREL III-A: go to a goal zone, wait for the reward sound, give up "
-                        "in extinction",
-    "patrol": "HIREL III-B: learn a loop on a leash and three checkpoint waits, then patrol "
-              "alone",
-}
-
-
-def _plain(text: str) -> str:
-    """reST markup out of a docstring for the terminal (``x`` -> x, :class:`X` -> X)."""
-    text = re.sub(r":\w+:`~?([^`]+)`", r"\1", text)
-    text = re.sub(r"``([^`]+)``", r"\1", text)
-    return re.sub(r"\*\*([^*]+)\*\*", r"\1", text)
-
-
-def _scenario_name(name: str, parser: Parser) -> str:
-    if name not in SCENARIOS:
-        parser.error(f"unknown scenario {name!r}; choose from: {', '.join(SCENARIOS)}")
-    return name
-
-
-def scenario_parser(name: str, prog: str | None = None) -> tuple[argparse.ArgumentParser,
-                                                                    ModuleType]:
-    """The argument parser of scenario ``name`` (common options plus its own) and its module."""
-    name = _scenario_name(name, Parser(prog=prog or "hippo run"))
-    module = importlib.import_module(SCENARIOS[name])
-    doc = _plain((module.__doc__ or "").strip())
-    parser = Parser(prog=prog or f"hippo run {name}", description=doc)
-    parser.add_argument("--out", type=out_dir, default=f"out/{name}",
-                        help="output folder (created if needed)")
-    parser.add_argument("--seed", type=integer(0, 2**32 - 1), default=0, help="random seed")
-    parser.add_argument("--quick", action="store_true",
-                        help="a short run for tests and first looks: its numbers are a smoke "
-                             "test, not results")
-    module.add_arguments(parser)
-    return parser, module
-
-
-def parse_scenario_args(name: str, argv: Sequence[str] = (), prog: str | None = None
-                        ) -> tuple[argparse.Namespace, ModuleType]:
-    """Parse and check ``argv`` for scenario ``name`` (exit status 2 on a mistake)."""
-    parser, module = scenario_parser(name, prog)
-    args = parser.parse_args(list(argv))
-    check = getattr(module, "check_args", None)
-    if check is not None:
-        check(args, parser)
-    return args, module
-
-
-def run_scenario(name: str, argv: Sequence[str] = ()) -> dict[str, Any]:
-    """Parse ``argv`` for scenario ``name``, run it, and return its metrics."""
-    args, module = parse_scenario_args(name, argv)
-    return module.run(args)
+__all__ = ["DESCRIPTIONS", "SCENARIOS", "main", "parse_scenario_args", "record_main",
+           "run_scenario", "scenario_parser"]
 
 
 def record_main(argv: Sequence[str]) -> int:
     """``hippo record ARENA --ticks N --rho R --sensors ir8 --seed S --out run.npz``."""
     from hippo.sim import arenas as arena_registry
-    from hippo.sim.record import record
 
-    p = argparse.ArgumentParser(prog="hippo record",
-                                description="Record a wall-following run to .npz")
-    p.add_argument("arena", help=f"one of: {', '.join(arena_registry.ARENAS)}")
-    p.add_argument("--ticks", type=int, default=18120)
-    p.add_argument("--rho", type=float, default=0.008)
-    p.add_argument("--sensors", default="ir8", choices=["ir8", "ray17"])
-    p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--out", default="run.npz")
+    p = Parser(prog="hippo record",
+               description="Record a wall-following run (SMC09's explorer) to .npz: what the "
+                           "robot sensed, and apart, where it truly was.")
+    p.add_argument("arena", choices=list(arena_registry.ARENAS), metavar="ARENA",
+                   help=f"one of: {', '.join(arena_registry.ARENAS)}")
+    p.add_argument("--ticks", type=integer(1, 10_000_000), default=18120,
+                   help="control ticks of 0.2 s")
+    p.add_argument("--rho", type=probability, default=0.008,
+                   help="probability per tick of switching the followed wall")
+    p.add_argument("--sensors", default="ir8", choices=["ir8", "ray17"],
+                   help="ir8: the e-puck of SMC09; ray17: ICANN09's 17 rays")
+    p.add_argument("--seed", type=integer(0, 2**32 - 1), default=0, help="random seed")
+    p.add_argument("--out", type=out_file, default="run.npz", help="the .npz file to write")
     p.add_argument("--figure", action="store_true", help="also write a trajectory PNG")
     a = p.parse_args(list(argv))
-    try:
-        arena = arena_registry.get(a.arena)
-    except ValueError as exc:
-        p.error(str(exc))
+    from hippo.sim.record import record
+
+    arena = arena_registry.get(a.arena)
     rec = record(arena, a.ticks, seed=a.seed, rho=a.rho, sensors=a.sensors)
+    a.out.parent.mkdir(parents=True, exist_ok=True)
     path = rec.save(a.out)
     print(f"wrote {len(rec)} ticks to {path}", file=sys.stderr)
     if a.figure:
-        from pathlib import Path
-
         from hippo.io import save_figure
         from hippo.plots.sim import plot_trajectory
 
         fig, _ = plot_trajectory(arena, rec)
-        png = Path(a.out).with_suffix(".png")
+        png = a.out.with_suffix(".png")
         save_figure(fig, png, dpi=120)
         print(f"wrote {png}", file=sys.stderr)
     return 0

@@ -40,6 +40,7 @@ Example::
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import hashlib
 import io
@@ -60,6 +61,7 @@ try:  # the optional extra hippo[sweep]
     from distributed.diagnostics.plugin import SchedulerPlugin
 except ImportError:  # pragma: no cover - checked by run_sweep with a clear message
     SchedulerPlugin = object  # type: ignore[assignment,misc]
+from hippo.cli_args import Parser, integer, out_dir
 from hippo.io import atomic_write_text, load_json, save_json
 from hippo.progress import Progress
 
@@ -109,11 +111,14 @@ def grid(scenario: str, seeds: Sequence[int], params: Mapping[str, Sequence[str]
 
 
 def scenario_task(cell: Cell, out: str) -> dict[str, Any]:
-    """Run ``cell``'s scenario with its output in ``out``; returns the scenario's metrics."""
-    from hippo.cli import run_scenario
+    """Run ``cell``'s scenario with its output in ``out``; returns the scenario's metrics (what
+    it prints goes to ``out/log.txt``, not to the sweep's terminal)."""
+    from hippo.runner import run_scenario
 
     os.environ.setdefault("HIPPO_QUIET", "1")
-    return run_scenario(cell.scenario, cell.argv(Path(out)))
+    Path(out).mkdir(parents=True, exist_ok=True)
+    with open(Path(out) / "log.txt", "w") as log, contextlib.redirect_stdout(log):
+        return run_scenario(cell.scenario, cell.argv(Path(out)))
 
 
 def _run_cell(task: Callable[[Cell, str], Mapping[str, Any]], cell: Cell, out: str,
@@ -231,8 +236,8 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
         if client is None:
             from hippo._threads import n_workers, usable_cores
 
-            client, own_cluster = _connect(scheduler, n_workers(workers) if workers else
-                                           usable_cores())
+            client, own_cluster = _connect(scheduler, usable_cores() if workers is None
+                                           else n_workers(workers))
             own_client = client
         try:
             _execute(client, todo, out, task, int(retries), result, as_completed)
@@ -340,7 +345,11 @@ def _write_table(result: SweepResult, parquet: bool) -> None:
         writer.writerow({k: _cell_text(r.get(k)) for k in cols})
     atomic_write_text(result.out / "results.csv", buf.getvalue())
     if parquet:
-        import pandas as pd
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("--parquet needs pandas and pyarrow: pip install pandas pyarrow "
+                              "(results.csv is written)") from None
 
         tmp = result.out / ".results.parquet.tmp"
         pd.DataFrame(result.rows, columns=cols).to_parquet(tmp)
@@ -377,14 +386,14 @@ def _seeds(text: str) -> list[int]:
 
 def sweep_main(argv: Sequence[str]) -> int:
     """``hippo sweep SCENARIO [options] [-- scenario options for every cell]``."""
-    from hippo.cli import SCENARIOS, scenario_parser
+    from hippo.runner import SCENARIOS, scenario_parser
 
     argv = list(argv)
     extra: list[str] = []
     if "--" in argv:
         i = argv.index("--")
         argv, extra = argv[:i], argv[i + 1:]
-    ap = argparse.ArgumentParser(
+    ap = Parser(
         prog="hippo sweep", description="Run a scenario over seeds x parameters on Dask "
         "distributed (a LocalCluster unless --scheduler is given); resumable.",
         epilog="Options after -- go to every cell's scenario (e.g. -- --quick).")
@@ -393,14 +402,20 @@ def sweep_main(argv: Sequence[str]) -> int:
     ap.add_argument("--param", nargs="+", action="append", default=[], metavar=("NAME", "VALUE"),
                     help="a scenario option and its values, e.g. --param leak 0.05,0.15 "
                     "0.11,0.14 (repeat for more; the grid is every combination)")
-    ap.add_argument("--out", default=None, help="output folder (default out/sweep-SCENARIO)")
-    ap.add_argument("--workers", type=int, default=None,
+    ap.add_argument("--out", type=out_dir, default=None,
+                    help="output folder (default out/sweep-SCENARIO)")
+    ap.add_argument("--workers", type=integer(1, 1024), default=None,
                     help="LocalCluster worker processes (default: the usable cores)")
     ap.add_argument("--scheduler", default=None, help="address of an existing Dask scheduler")
-    ap.add_argument("--retries", type=int, default=2, help="extra attempts of a failing cell")
+    ap.add_argument("--retries", type=integer(0, 100), default=2,
+                    help="extra attempts of a failing cell")
     ap.add_argument("--metric", default=None, help="metric of the summary figure")
     ap.add_argument("--parquet", action="store_true", help="also write results.parquet")
     a = ap.parse_args(argv)
+    if a.workers is not None and a.workers < 1:
+        ap.error(f"--workers must be >= 1, got {a.workers}")
+    if a.retries < 0:
+        ap.error(f"--retries must be >= 0, got {a.retries}")
     params: dict[str, list[str]] = {}
     parser, _ = scenario_parser(a.scenario)
     known = {s.lstrip("-") for act in parser._actions for s in act.option_strings}

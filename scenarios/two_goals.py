@@ -17,7 +17,6 @@ rate ratio), ``two_goals.png`` (trajectories; drives over time) and ``run.npz`` 
 
 from __future__ import annotations
 
-import argparse
 import itertools
 import math
 from enum import IntEnum
@@ -27,6 +26,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from hippo.agent import Agent, AgentParams
+from hippo.cli_args import Parser, integer, number, out_dir
 from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.io import save_json
 from hippo.plots.sim import draw_arena
@@ -68,12 +68,17 @@ def build_arena() -> Arena:
 
 
 def main(argv: list[str] | None = None) -> dict:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("--out", default="out/two-goals")
-    ap.add_argument("--quick", action="store_true", help="a short run (tests, first look)")
-    ap.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned")
-    ap.add_argument("--minutes", type=float, default=20.0, help="time alone (quick: at most 6)")
+    ap = Parser(prog="two_goals.py", description=__doc__.splitlines()[0])
+    ap.add_argument("--seed", type=integer(0, 2**32 - 1), default=0, help="random seed")
+    ap.add_argument("--out", type=out_dir, default="out/two-goals",
+                    help="output folder (created if needed)")
+    ap.add_argument("--quick", action="store_true",
+                    help="a short run for tests and first looks: its numbers are a smoke test")
+    ap.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned",
+                    help="learned from the robot's sensors, or Gaussian fields on the true "
+                         "position")
+    ap.add_argument("--minutes", type=number(1.0, 600.0), default=20.0,
+                    help="simulated minutes alone (quick: at most 6)")
     args = ap.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

@@ -26,7 +26,7 @@ correlated), clipped to [0, 1]. With nothing flagged the readings pass through u
 the guard costs nothing on a healthy robot.
 
 The choice of this design over training with random sensor dropout was made by measurement on
-the tuning seeds (see ``hippo run two-rooms --faults 1``).
+the tuning seeds (see ``hippo run two-rooms --faults``).
 """
 
 from __future__ import annotations

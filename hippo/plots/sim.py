@@ -64,13 +64,14 @@ def plot_trajectory(arena: Arena, rec: Recording | None = None, *, xy: np.ndarra
 
 def plot_sensor_strip(rec: Recording, start: int = 0, stop: int | None = None,
                       ax: Axes | None = None) -> tuple[Figure, Axes]:
-    """Sensor readings over time as an image (rows: sensors), with the region underneath."""
+    """Sensor readings over time as an image (rows: sensors, dark = near a wall)."""
     stop = len(rec) if stop is None else stop
     if ax is None:
-        _, ax = plt.subplots(figsize=(10, 3))
+        _, ax = plt.subplots(figsize=(10, 3), layout="constrained")  # nothing clipped
     S = rec.sensors[start:stop].T
-    ax.imshow(S, aspect="auto", cmap="gray", vmin=0, vmax=1, interpolation="nearest",
-              extent=(rec.t[start], rec.t[stop - 1], S.shape[0] - 0.5, -0.5))
+    im = ax.imshow(S, aspect="auto", cmap="gray", vmin=0, vmax=1, interpolation="nearest",
+                   extent=(rec.t[start], rec.t[stop - 1], S.shape[0] - 0.5, -0.5))
+    ax.figure.colorbar(im, ax=ax, label="reading", pad=0.01)
     ax.set_xlabel("time (s)")
     ax.set_ylabel("sensor")
     ax.set_title("sensor readings (0 = touching, 1 = nothing in range)")

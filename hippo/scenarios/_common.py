@@ -32,6 +32,9 @@ def write_metrics(out: Path, metrics: dict[str, Any], *, announce: bool = True,
     if announce:
         if summary:
             print(summary, file=sys.stderr)
+        if metrics.get("quick"):
+            print("--quick: a smoke test with shortened settings; its numbers are not results",
+                  file=sys.stderr)
         print(f"results written to {Path(out).resolve()} (metrics.json, figures, run.npz)",
               file=sys.stderr)
     return path

@@ -7,6 +7,7 @@ import time
 
 import numpy as np
 
+from hippo.cli_args import integer, probability
 from hippo.io import save_figure
 from hippo.plots.sim import plot_sensor_strip, plot_trajectory
 from hippo.scenarios._common import prepare_out, write_metrics
@@ -15,9 +16,12 @@ from hippo.sim.record import record
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--arena", default="two-rooms", help="arena name (default: %(default)s)")
-    parser.add_argument("--ticks", type=int, default=6000, help="control ticks of 0.2 s")
-    parser.add_argument("--rho", type=float, default=0.008, help="side-switch probability")
+    parser.add_argument("--arena", default="two-rooms", choices=list(arenas.ARENAS),
+                        help="the arena")
+    parser.add_argument("--ticks", type=integer(2, 10_000_000), default=6000,
+                        help="control ticks of 0.2 s")
+    parser.add_argument("--rho", type=probability, default=0.008,
+                        help="side-switch probability of the wall follower per tick")
 
 
 def run(args: argparse.Namespace) -> dict:
@@ -41,5 +45,8 @@ def run(args: argparse.Namespace) -> dict:
         "locations_visited": len(np.unique(rec.label)),
         "mean_speed_cm_s": float(rec.speed.mean()),
     }
-    write_metrics(out, metrics)
+    write_metrics(out, metrics, summary=(
+        f"demo: {ticks} ticks ({metrics['simulated_s']:.0f} s simulated) in {arena.name}, "
+        f"{metrics['locations_visited']} of {len(arena.locations)} labelled locations visited, "
+        f"mean speed {metrics['mean_speed_cm_s']:.1f} cm/s, {metrics['ticks_per_s']:.0f} ticks/s"))
     return metrics

@@ -45,6 +45,8 @@ from typing import Any
 
 import numpy as np
 
+from hippo.cli_args import integer, number, probability
+from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
 from hippo.io import save_figure, save_npz
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
@@ -63,33 +65,52 @@ from hippo.sim import arenas
 from hippo.sim.record import record
 
 TARGETS = {"localized_units": 62, "location_decoding_accuracy_test": 0.80}
+#: the shortest recording, and the fewest reservoir samples after down-sampling
+MIN_TICKS, MIN_SAMPLES = 5000, 200
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--ticks", type=int, default=350_000, help="recorded control ticks")
-    parser.add_argument("--rho", type=float, default=0.0,
-                        help="wall-side switch probability (default %(default)s: a full tour)")
-    parser.add_argument("--downsample", type=int, default=25,
+    parser.add_argument("--ticks", type=integer(MIN_TICKS, 100_000_000), default=350_000,
+                        help=f"recorded control ticks of 0.2 s (at least {MIN_TICKS})")
+    parser.add_argument("--rho", type=probability, default=0.0,
+                        help="wall-side switch probability (0: a full tour)")
+    parser.add_argument("--downsample", type=integer(1, 1000), default=25,
                         help="input down-sampling factor (ICANN09: 50 for a 2x slower tour; "
-                             "default %(default)s keeps its ~260 samples per maze tour)")
-    parser.add_argument("--neurons", type=int, default=400, help="reservoir size")
-    parser.add_argument("--units", type=int, default=70, help="SFA and ICA units")
-    parser.add_argument("--leak", type=float, default=0.6, help="reservoir leak rate")
+                             "25 keeps its ~260 samples per maze tour)")
+    parser.add_argument("--neurons", type=integer(1, 20_000), default=400, help="reservoir size")
+    parser.add_argument("--units", type=integer(1, 500), default=70, help="SFA and ICA units")
+    parser.add_argument("--leak", type=number(0.0, 1.0, lo_open=True), default=0.6,
+                        help="reservoir leak rate")
     add_seeds_argument(parser, "reservoirs to repeat over (the exploration run is --seed's)")
     add_cache_argument(parser)
-    parser.add_argument("--ceiling", type=int, default=1, choices=[0, 1],
+    parser.add_argument("--ceiling", action=argparse.BooleanOptionalAction, default=True,
                         help="also report the supervised ceiling (ridge on the reservoir state)")
-    parser.add_argument("--ica-restarts", type=int, default=3)
+    parser.add_argument("--ica-restarts", type=integer(1, 1000), default=3,
+                        help="FastICA restarts, best kept by --ica-score (no labels)")
     parser.add_argument("--ica-score", default="kurtosis",
-                        choices=["kurtosis", "sparseness", "slowness"])
-    parser.add_argument("--sfa-cutoff", default="1e-6",
-                        help="relative whitening cutoff, or 'auto' (default: %(default)s; "
-                             "the SFA default 1e-8 gives ~2 fewer localized units here)")
-    parser.add_argument("--threshold", type=float, default=M.ICANN09_THRESHOLD,
+                        choices=["kurtosis", "sparseness", "slowness"],
+                        help="label-free score that picks the ICA restart")
+    parser.add_argument("--sfa-cutoff", type=cli_sfa_cutoff, default="1e-6",
+                        help="relative whitening cutoff in (0, 1), or 'auto' (the SFA default "
+                             "1e-8 gives ~2 fewer localized units here)")
+    parser.add_argument("--threshold", type=number(0.0, 1000.0, lo_open=True),
+                        default=M.ICANN09_THRESHOLD,
                         help="localization threshold in training s.d. (ICANN09: 4.5)")
-    parser.add_argument("--ablation", type=int, default=1, choices=[0, 1],
+    parser.add_argument("--ablation", action=argparse.BooleanOptionalAction, default=True,
                         help="also fit the no-reservoir, quadratic-SFA ablation")
-    parser.add_argument("--figures", type=int, default=1, choices=[0, 1], help="write PNGs")
+    parser.add_argument("--figures", action=argparse.BooleanOptionalAction, default=True,
+                        help="write PNGs")
+
+
+def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
+    """Checks across arguments, before any work."""
+    if args.ticks // args.downsample < MIN_SAMPLES:
+        parser.error(f"argument --ticks: {args.ticks} ticks down-sampled by {args.downsample} "
+                     f"leave {args.ticks // args.downsample} samples; at least {MIN_SAMPLES} "
+                     "are needed (more ticks or a smaller --downsample)")
+    if args.units > args.neurons + 17:
+        parser.error(f"argument --units: {args.units} exceeds the {args.neurons + 17} inputs "
+                     "of SFA (--neurons + 17 rays)")
 
 
 def _analyse(model: RCSFAICA, U: np.ndarray, labels: np.ndarray, n_train: int,
@@ -250,7 +271,15 @@ def run(args: argparse.Namespace) -> dict:
     save_npz(out / "run.npz", arrays)
     if args.figures:
         _figures(out, arena, rec, keep, args.threshold, n_loc)
-    write_metrics(out, metrics)
+    write_metrics(out, metrics, summary=(
+        f"maze ({len(seeds)} reservoir(s)): {metrics['localized_units']:.1f} of {units} units "
+        f"localized; location decoded on the test part "
+        f"{metrics['location_decoding_accuracy_test']:.2f} exactly, "
+        f"{metrics['location_decoding_within_one_step_test']:.2f} within one step"
+        + (f"; without the reservoir {metrics['ablation_localized_units']:.1f} units, "
+           f"{metrics['ablation_location_decoding_accuracy_test']:.2f}" if args.ablation else "")
+        + f" (targets: {TARGETS['localized_units']} units, "
+        f"{TARGETS['location_decoding_accuracy_test']})"))
     return metrics
 
 

@@ -29,6 +29,7 @@ from enum import IntEnum
 import numpy as np
 
 from hippo.agent import Agent, AgentParams
+from hippo.cli_args import integer, number, probability
 from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
@@ -57,19 +58,26 @@ START_HEADINGS = {"south": 0.0, "east": math.pi / 2, "north": math.pi, "west": -
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--delay", type=float, default=7.0, help="reward delay in s (HIREL: 7)")
-    parser.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned")
-    parser.add_argument("--explore-min", type=float, default=40.0,
-                        help="exploration time in minutes (HIREL: 40)")
-    parser.add_argument("--explore-rho", type=float, default=0.0,
+    parser.add_argument("--delay", type=number(0.2, 100.0), default=7.0,
+                        help="reward delay in s (HIREL: 7)")
+    parser.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned",
+                        help="learned from the robot's sensors, or Gaussian fields on the true "
+                             "position (to measure what learning costs)")
+    parser.add_argument("--explore-min", type=number(5.0, 600.0), default=40.0,
+                        help="exploration time in simulated minutes (HIREL: 40)")
+    parser.add_argument("--explore-rho", type=probability, default=0.0,
                         help="side-switch probability of the exploring wall follower")
-    parser.add_argument("--teach", type=int, default=3, help="guided (leash + block) trials")
-    parser.add_argument("--trials", type=int, default=12, help="rewarded trials")
-    parser.add_argument("--extinction", type=int, default=4, help="extinction trials")
-    parser.add_argument("--units", type=int, default=24, help="ICA units of the place cells")
-    parser.add_argument("--places", type=int, default=32,
+    parser.add_argument("--teach", type=integer(1, 100), default=3,
+                        help="guided (leash + block) trials")
+    parser.add_argument("--trials", type=integer(1, 1000), default=12, help="rewarded trials")
+    parser.add_argument("--extinction", type=integer(0, 1000), default=4,
+                        help="extinction trials")
+    parser.add_argument("--units", type=integer(1, 200), default=24,
+                        help="ICA units of the place cells")
+    parser.add_argument("--places", type=integer(1, 500), default=32,
                         help="place prototypes read out from the ICA units (learned cells)")
-    parser.add_argument("--trial-timeout", type=float, default=240.0, help="s per trial")
+    parser.add_argument("--trial-timeout", type=number(10.0, 3600.0), default=240.0,
+                        help="s per trial")
     parser.add_argument("--start-facing", choices=["explored", "kept"], default="explored",
                         help="trials start facing along the corridor in the direction the robot "
                              "explored (its place cells are direction-specific), or with the "

@@ -27,6 +27,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from hippo.brain import Brain, BrainParams
+from hippo.cli_args import integer, number, numbers
 from hippo.io import save_npz
 from hippo.plots.timing import plot_fig6, plot_reproduction
 from hippo.progress import Progress
@@ -43,23 +44,19 @@ FULL_DELAYS = (2.0, 3.5, 7.0, 11.6, 19.1, 24.1, 45.0, 60.0)
 QUICK_DELAYS = (2.0, 7.0, 20.0)
 
 
-def _floats(text: str) -> list[float]:
-    return [float(x) for x in text.split(",") if x.strip()]
-
-
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--delay", type=float, default=7.0,
+    parser.add_argument("--delay", type=number(0.2, 100.0), default=7.0,
                         help="reward delay of the place-preference task, s (HIREL: 7)")
-    parser.add_argument("--pairings", type=int, default=None,
+    parser.add_argument("--pairings", type=integer(1, 1000), default=None,
                         help="rewarded trials before the test trials (default 5, quick 3)")
-    parser.add_argument("--delays", type=_floats, default=None,
+    parser.add_argument("--delays", type=numbers((1, 50), 0.2, 100.0, unit="s"), default=None,
                         help="comma-separated delays for Fig. 6 c-d and the reproduction "
                         "(default 2,3.5,7,11.6,19.1,24.1,45,60; quick 2,7,20)")
-    parser.add_argument("--reproductions", type=int, default=None,
+    parser.add_argument("--reproductions", type=integer(1, 1000), default=None,
                         help="learners per delay for the reproduction (default 6, quick 2)")
-    parser.add_argument("--jitter", type=float, default=0.1,
+    parser.add_argument("--jitter", type=number(0.0, 1.0, hi_open=True), default=0.1,
                         help="control tick jitter, fraction of dt = 0.2 s")
-    parser.add_argument("--noise", type=float, default=0.3,
+    parser.add_argument("--noise", type=number(0.0, 10.0), default=0.3,
                         help="noise on the place-cell activities (sd)")
 
 
@@ -240,5 +237,11 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         arrays[f"probe{i}_tau"] = by_delay[d].tau
         arrays[f"probe{i}_prediction"] = by_delay[d].prediction
     save_npz(Path(out) / "run.npz", arrays)
-    write_metrics(out, metrics)
+    resume = metrics["extinction_resume_after_delay_s"]
+    write_metrics(out, metrics, summary=(
+        f"timing: the reward delay ({args.delay:g} s) learned as "
+        f"{metrics['reward_learned_delay_s']:.2f} s; in extinction the non-occurrence fired "
+        + ("never" if resume is None else f"{resume:.1f} s after the delay")
+        + f"; reproduced delays {', '.join(f'{d:g}' for d in delays)} s within "
+        f"{metrics['worst_mean_error_pct']:.1f} % (worst mean error)"))
     return metrics

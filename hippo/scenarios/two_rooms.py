@@ -15,16 +15,17 @@ only new weights (mean ± sd, worst seed). The project's convention: settings ar
 tuning seeds 0-9 and reported on the held-out seeds 100-119. ``--cache DIR`` keeps the
 recordings for reuse.
 
-Ceiling (``--ceiling 1``, default): a supervised ridge read-out of the same reservoir state
-``[u; x]`` (room A vs B, 5 blocked folds in time, :func:`~hippo.perception.metrics.ridge_ceiling`)
-shows what the sensors allow next to what the unsupervised room cell reaches.
+Ceiling (``--ceiling``, default; ``--no-ceiling`` skips it): a supervised ridge read-out of
+the same reservoir state ``[u; x]`` (room A vs B, 5 blocked folds in time,
+:func:`~hippo.perception.metrics.ridge_ceiling`) shows what the sensors allow next to what
+the unsupervised room cell reaches.
 
-Faults (``--faults 1``): sensors die (stuck at 0, stuck at 1, or noise only; 0-3 of the 8) or
+Faults (``--faults``): sensors die (stuck at 0, stuck at 1, or noise only; 0-3 of the 8) or
 all get noisier (s.d. 0.01-0.1) at the start of the test part; the room cell chosen on clean
 training data is scored raw and behind a :class:`~hippo.perception.sensor_guard.SensorGuard`
 (``faults`` in the metrics, ``faults.png``).
 
-``--leak`` replaces SMC09's leak pair for the room cell. ``--leak-sweep 1`` also fits a grid of
+``--leak`` replaces SMC09's leak pair for the room cell. ``--leak-sweep`` also fits a grid of
 16 leak pairs over each reservoir (:func:`~hippo.perception.fit_leak_sweep`: one batched harvest
 and parallel fits) and reports the room cell's accuracy and kidnapping recovery for each pair
 (``leak_sweep`` in the metrics, ``leak_sweep.png``): the slow leak sets both, one against the
@@ -41,6 +42,8 @@ from typing import Any
 
 import numpy as np
 
+from hippo.cli_args import integer, probability
+from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
 from hippo.io import load_json, save_figure, save_json, save_npz
 from hippo.perception import RCSFAICA, ICAConvergenceWarning, fit_leak_sweep
 from hippo.perception import metrics as M
@@ -63,6 +66,8 @@ from hippo.sim.record import Recording, record
 from hippo.sim.world import World
 
 PAPER_LEAK = (0.05, 0.15)
+#: the test part (the last eighth) must hold the first kidnapping and the return (tick 400)
+MIN_TICKS = 4000
 CORRIDOR_LEAK = (0.11, 0.14)
 KIDNAP_AWAY = (150, 640)    # test ticks: moved to the other room (SMC09 Fig. 7)
 KIDNAP_BACK = (400, 980)    # test ticks: put back where it was taken from
@@ -84,33 +89,48 @@ def parse_leak(text: str) -> tuple[float, ...]:
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--ticks", type=int, default=18120, help="recorded control ticks")
-    parser.add_argument("--rho", type=float, default=0.008, help="wall-side switch probability")
-    parser.add_argument("--neurons", type=int, default=600, help="reservoir size")
-    parser.add_argument("--n-sfa", type=int, default=4, help="SFA units")
-    parser.add_argument("--n-ica", type=int, default=4, help="ICA units")
+    parser.add_argument("--ticks", type=integer(MIN_TICKS, 10_000_000), default=18120,
+                        help="recorded control ticks of 0.2 s; the last eighth is the test part "
+                             f"with the kidnappings (at least {MIN_TICKS})")
+    parser.add_argument("--rho", type=probability, default=0.008,
+                        help="wall-side switch probability per tick")
+    parser.add_argument("--neurons", type=integer(1, 20_000), default=600, help="reservoir size")
+    parser.add_argument("--n-sfa", type=integer(1, 500), default=4, help="SFA units")
+    parser.add_argument("--n-ica", type=integer(1, 500), default=4,
+                        help="ICA units (at most --n-sfa)")
     add_seeds_argument(parser, "exploration runs and reservoirs to repeat over (one each "
                                "per seed)")
     add_cache_argument(parser)
-    parser.add_argument("--ceiling", type=int, default=1, choices=[0, 1],
+    parser.add_argument("--ceiling", action=argparse.BooleanOptionalAction, default=True,
                         help="also report the supervised ceiling (ridge on the reservoir state)")
-    parser.add_argument("--faults", type=int, default=0, choices=[0, 1],
+    parser.add_argument("--faults", action="store_true",
                         help="also draw room-cell accuracy against dead sensors (0-3) and "
                              "added sensor noise (0.01-0.1) on the test part")
-    parser.add_argument("--ica-restarts", type=int, default=10,
+    parser.add_argument("--ica-restarts", type=integer(1, 1000), default=10,
                         help="FastICA restarts, best kept by --ica-score (no labels)")
     parser.add_argument("--ica-score", default="kurtosis",
                         choices=["kurtosis", "sparseness", "slowness"])
-    parser.add_argument("--sfa-cutoff", default="1e-8",
-                        help="relative whitening cutoff, or 'auto' (default: %(default)s)")
+    parser.add_argument("--sfa-cutoff", type=cli_sfa_cutoff, default="1e-8",
+                        help="relative whitening cutoff in (0, 1), or 'auto'")
     parser.add_argument("--leak", type=parse_leak, default=PAPER_LEAK,
                         help="leak rates of the room-cell reservoir, one per half "
                              "(default: SMC09's 0.05,0.15)")
-    parser.add_argument("--leak-sweep", type=int, default=0, choices=[0, 1],
+    parser.add_argument("--leak-sweep", action=argparse.BooleanOptionalAction, default=False,
                         help="also fit a 4x4 grid of leak pairs and report each")
-    parser.add_argument("--hold", type=int, default=5,
+    parser.add_argument("--hold", type=integer(1, 10_000), default=5,
                         help="recovered = right for this many consecutive ticks")
-    parser.add_argument("--figures", type=int, default=1, choices=[0, 1], help="write PNGs")
+    parser.add_argument("--figures", action=argparse.BooleanOptionalAction, default=True,
+                        help="write PNGs")
+
+
+def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
+    """Checks across arguments, before any work."""
+    if args.n_ica > args.n_sfa:
+        parser.error(f"argument --n-ica: {args.n_ica} exceeds --n-sfa {args.n_sfa} "
+                     "(ICA rotates the SFA outputs)")
+    if args.n_sfa > args.neurons + 8:
+        parser.error(f"argument --n-sfa: {args.n_sfa} exceeds the {args.neurons + 8} inputs of "
+                     "SFA (--neurons + 8 sensors)")
 
 
 def _other_room_pose(arena, room: str, rng: np.random.Generator) -> tuple[float, float, float]:
@@ -373,7 +393,14 @@ def run(args: argparse.Namespace) -> dict:
             _sweep_figure(out, sweep["rows"])
         if fault_rows:
             _fault_figure(out, metrics["faults"], seeds)
-    write_metrics(out, metrics)
+    kid = metrics["kidnap_recovery_ticks"]
+    write_metrics(out, metrics, summary=(
+        f"two rooms ({len(seeds)} seed(s), leaks {', '.join(f'{v:g}' for v in args.leak)}):"
+        f" room cell {paper_room['mean']:.2f} balanced accuracy on the test part, corridor "
+        f"cell {cor_cell['mean']:.2f} (leaks 0.11, 0.14); after a kidnapping the room cell is "
+        f"right again after " + ("no recovery" if kid != kid else f"{kid:.0f} ticks")
+        + f" (targets: {TARGETS['room_cell_test_balanced_accuracy']}, "
+        f"{TARGETS['kidnap_recovery_ticks']} ticks)"))
     return metrics
 
 

@@ -19,7 +19,8 @@ from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
 from hippo.perception.states import StateLayerParams
 from hippo.places import GroundTruthPlaceCells, LearnedPlaceCells, PlaceSource
-from hippo.progress import Progress
+from hippo.progress import Progress, working
+from hippo.seeds import Seeds
 from hippo.sim.arena import Arena
 from hippo.sim.controllers import WallFollower, WallFollowerParams
 from hippo.sim.world import World
@@ -67,8 +68,8 @@ def explore(world: World, ticks: int, rho: float, seed: int, log: Log | None = N
     input (without pauses, a wait left the learned places off for the next minute).
     Each tick is logged in ``log`` (no agent yet) under ``phase``."""
     ctrl = WallFollower(WallFollowerParams(rho=rho), sensors=world.sensors, robot=world.robot,
-                        rng=np.random.default_rng([seed, 3]))
-    rng = np.random.default_rng([seed, 4])
+                        rng=Seeds(seed).generator("exploration"))
+    rng = Seeds(seed).generator("pauses")
     obs = world.observe()
     tour = Tour()
     pause = 0
@@ -125,7 +126,8 @@ def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: 
         raise ValueError(f"place cells must be 'learned' or 'ground-truth', got {kind!r}")
     model = RCSFAICA(n_reservoir=400, leak=(0.1, 0.3), spectral_radius=0.9, n_sfa=units,
                      n_ica=units, ica_restarts=3, seed=seed)
-    Y = model.fit_transform(sensors)
-    protos = PlacePrototypes(PrototypeParams(n_prototypes=n_places, seed=seed)).fit(Y)
+    with working("fitting place cells"):
+        Y = model.fit_transform(sensors)
+        protos = PlacePrototypes(PrototypeParams(n_prototypes=n_places, seed=seed)).fit(Y)
     model.reset_state()
     return LearnedPlaceCells(model, protos)

@@ -29,7 +29,7 @@ def test_two_rooms_quick(tmp_path):
 def test_two_rooms_leak_option_and_sweep(tmp_path):
     out = tmp_path / "two-rooms"
     m = run_scenario("two-rooms", ["--quick", "--out", str(out), "--leak", "0.08,0.15",
-                                   "--leak-sweep", "1", "--ica-restarts", "1"])
+                                   "--leak-sweep", "--ica-restarts", "1"])
     assert m["leak"] == [0.08, 0.15] and "leak_0.08_0.15" in m
     assert (out / "leak_sweep.png").exists()
     rows = m["leak_sweep"]
@@ -87,8 +87,8 @@ def test_kidnapped_run_replays_the_clean_run_until_the_first_kidnap():
 
 
 def test_fault_curve_guard_helps(tmp_path):
-    m = run_scenario("two-rooms", ["--quick", "--out", str(tmp_path), "--faults", "1",
-                                   "--ica-restarts", "1", "--figures", "0"])
+    m = run_scenario("two-rooms", ["--quick", "--out", str(tmp_path), "--faults",
+                                   "--ica-restarts", "1", "--no-figures"])
     f = m["faults"]
     rows = f["rows"]
     assert {r["n_dead"] for r in rows} == {0, 1, 2, 3}

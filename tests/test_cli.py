@@ -1,0 +1,162 @@
+"""The ``hippo`` command never shows a traceback for a user's mistake.
+
+Each mistake below must be answered before any work starts (the scenario's ``run`` is replaced
+by a tripwire), with exit status 2 and one line on stderr that names the argument or value.
+"""
+
+from __future__ import annotations
+
+import importlib
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from hippo import cli
+
+ROOT = Path(__file__).resolve().parents[1]
+A_FILE = str(ROOT / "pyproject.toml")
+
+#: (argv, a word the one-line message must contain)
+MISTAKES: list[tuple[list[str], str]] = [
+    # the command itself
+    (["bogus"], "bogus"),
+    (["run"], "scenario"),
+    (["run", "bogus"], "bogus"),
+    (["list", "extra"], "extra"),
+    (["run", "two-rooms", "--bogus", "1"], "--bogus"),
+    (["run", "patrol", "--quick=1"], "--quick"),
+    # options every scenario has
+    (["run", "two-rooms", "--seed", "x"], "--seed"),
+    (["run", "two-rooms", "--seed", "-1"], "--seed"),
+    (["run", "maze", "--out", A_FILE], "--out"),
+    (["run", "maze", "--out", A_FILE + "/below"], "--out"),
+    # two rooms
+    (["run", "two-rooms", "--ticks", "10"], "--ticks"),
+    (["run", "two-rooms", "--ticks", "0"], "--ticks"),
+    (["run", "two-rooms", "--ticks", "-5"], "--ticks"),
+    (["run", "two-rooms", "--ticks", "many"], "--ticks"),
+    (["run", "two-rooms", "--neurons", "0"], "--neurons"),
+    (["run", "two-rooms", "--n-ica", "10"], "--n-ica"),
+    (["run", "two-rooms", "--n-sfa", "0"], "--n-sfa"),
+    (["run", "two-rooms", "--rho", "-1"], "--rho"),
+    (["run", "two-rooms", "--rho", "2"], "--rho"),
+    (["run", "two-rooms", "--seeds", "0"], "--seeds"),
+    (["run", "two-rooms", "--sfa-cutoff", "bogus"], "--sfa-cutoff"),
+    (["run", "two-rooms", "--sfa-cutoff", "0"], "--sfa-cutoff"),
+    (["run", "two-rooms", "--leak", "0"], "--leak"),
+    (["run", "two-rooms", "--leak", "0.1,x"], "--leak"),
+    (["run", "two-rooms", "--ica-restarts", "0"], "--ica-restarts"),
+    (["run", "two-rooms", "--ica-score", "bogus"], "--ica-score"),
+    (["run", "two-rooms", "--hold", "-1"], "--hold"),
+    # maze
+    (["run", "maze", "--units", "0"], "--units"),
+    (["run", "maze", "--downsample", "0"], "--downsample"),
+    (["run", "maze", "--neurons", "-3"], "--neurons"),
+    (["run", "maze", "--threshold", "nan"], "--threshold"),
+    (["run", "maze", "--leak", "1.5"], "--leak"),
+    (["run", "maze", "--ticks", "100"], "--ticks"),
+    # place preference
+    (["run", "place-preference", "--units", "0"], "--units"),
+    (["run", "place-preference", "--explore-min", "0"], "--explore-min"),
+    (["run", "place-preference", "--delay", "0"], "--delay"),
+    (["run", "place-preference", "--delay", "inf"], "--delay"),
+    (["run", "place-preference", "--trials", "0"], "--trials"),
+    (["run", "place-preference", "--teach", "-1"], "--teach"),
+    (["run", "place-preference", "--extinction", "-1"], "--extinction"),
+    (["run", "place-preference", "--places", "0"], "--places"),
+    (["run", "place-preference", "--trial-timeout", "0"], "--trial-timeout"),
+    (["run", "place-preference", "--place-cells", "bogus"], "--place-cells"),
+    (["run", "place-preference", "--explore-rho", "1.5"], "--explore-rho"),
+    # patrol
+    (["run", "patrol", "--waits", "1,2"], "--waits"),
+    (["run", "patrol", "--waits", "a,b,c"], "--waits"),
+    (["run", "patrol", "--loops", "0"], "--loops"),
+    (["run", "patrol", "--explore-min", "-1"], "--explore-min"),
+    # timing demo
+    (["run", "timing-demo", "--delay", "0"], "--delay"),
+    (["run", "timing-demo", "--pairings", "0"], "--pairings"),
+    (["run", "timing-demo", "--delays", "1,x"], "--delays"),
+    (["run", "timing-demo", "--jitter", "1.5"], "--jitter"),
+    (["run", "timing-demo", "--noise", "-1"], "--noise"),
+    # demo and record
+    (["run", "demo", "--arena", "bogus"], "--arena"),
+    (["demo", "--ticks", "0"], "--ticks"),
+    (["record", "bogus-arena"], "bogus-arena"),
+    (["record", "two-rooms", "--ticks", "0"], "--ticks"),
+    (["record", "two-rooms", "--out", str(ROOT)], "--out"),
+    (["record", "two-rooms", "--rho", "3"], "--rho"),
+    # sweep
+    (["sweep", "bogus"], "bogus"),
+    (["sweep", "two-rooms", "--workers", "0"], "--workers"),
+    (["sweep", "two-rooms", "--param", "bogus", "1"], "bogus"),
+    (["sweep", "two-rooms", "--seeds", "x"], "--seeds"),
+]
+
+
+@pytest.fixture(autouse=True)
+def tripwire(monkeypatch):
+    """Any scenario's ``run`` (and a recording) fails the test: no work may start."""
+    def no_work(*args, **kwargs):
+        raise AssertionError("work started before the arguments were checked")
+
+    for module in cli.SCENARIOS.values():
+        monkeypatch.setattr(importlib.import_module(module), "run", no_work)
+    monkeypatch.setattr(importlib.import_module("hippo.sim.record"), "record", no_work)
+
+
+def test_at_least_forty_mistakes_are_covered():
+    assert len(MISTAKES) >= 40
+
+
+@pytest.mark.parametrize(("argv", "word"), MISTAKES, ids=[" ".join(a) for a, _ in MISTAKES])
+def test_a_mistake_is_one_line_and_exit_2_before_any_work(argv, word, capsys):
+    t0 = time.perf_counter()
+    with pytest.raises(SystemExit) as stop:
+        cli.main(argv)
+    elapsed = time.perf_counter() - t0
+    err = capsys.readouterr().err
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert stop.value.code == 2, err
+    assert len(lines) == 1, err
+    assert "Traceback" not in err
+    assert word in lines[0], lines[0]
+    assert elapsed < 5.0  # answered at once (parsing only; a run takes minutes)
+
+
+def test_a_failure_while_running_is_one_line_and_exit_1(monkeypatch, capsys, tmp_path):
+    def broken(args):
+        raise RuntimeError("the simulator\nbroke")
+
+    monkeypatch.setattr(importlib.import_module(cli.SCENARIOS["demo"]), "run", broken)
+    assert cli.main(["run", "demo", "--out", str(tmp_path)]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "the simulator broke" in err and "HIPPO_DEBUG" in err
+    monkeypatch.setenv("HIPPO_DEBUG", "1")
+    with pytest.raises(RuntimeError):  # the traceback, on request
+        cli.main(["run", "demo", "--out", str(tmp_path)])
+
+
+def test_list_and_help_are_readable(capsys):
+    assert cli.main(["list"]) == 0
+    out = capsys.readouterr().out
+    for name, text in cli.DESCRIPTIONS.items():
+        assert f"{name}" in out and text in out
+    assert "hippo.scenarios" not in out  # descriptions, not module paths
+    with pytest.raises(SystemExit) as stop:
+        cli.main(["run", "place-preference", "--help"])
+    assert stop.value.code == 0
+    text = capsys.readouterr().out
+    assert "``" not in text and ":class:" not in text   # no raw reST
+    assert "(default: 7.0)" in text and "(default: learned)" in text
+
+
+def test_exit_status_from_a_real_process():
+    """The console entry point: status 2 and no traceback, in a fresh interpreter."""
+    proc = subprocess.run([sys.executable, "-m", "hippo.cli", "run", "two-rooms", "--ticks",
+                           "-5"], capture_output=True, text=True, cwd=ROOT, timeout=120,
+                          env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
+    assert proc.returncode == 2
+    assert "Traceback" not in proc.stderr and proc.stderr.count("\n") == 1
