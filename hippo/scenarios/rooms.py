@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo.cli_args import integer, probability
+from hippo.cli_args import integer, numbers, probability
 from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
 from hippo.io import save_figure
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
@@ -48,7 +48,6 @@ from hippo.scenarios._common import (
     sfa_cutoff,
     write_metrics,
 )
-from hippo.scenarios.two_rooms import parse_leak
 from hippo.sim.flats import random_flat, room_names
 from hippo.sim.record import Recording, record
 
@@ -69,7 +68,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--neurons", type=integer(1, 20_000), default=600, help="reservoir size")
     parser.add_argument("--units", type=integer(0, 500), default=0,
                         help="SFA and ICA units (default 0: twice the number of rooms)")
-    parser.add_argument("--leak", type=parse_leak, default=(0.05, 0.15),
+    parser.add_argument("--leak", type=numbers((1, None), 0.0, 1.0, lo_open=True),
+                        default=(0.05, 0.15),
                         help="leak rates, one per half (default: SMC09's 0.05,0.15)")
     parser.add_argument("--ica-restarts", type=integer(1, 1000), default=10)
     parser.add_argument("--sfa-cutoff", type=cli_sfa_cutoff, default="1e-8",
