@@ -63,8 +63,8 @@ class BrainParams:
         place state again (learned place cells need a few seconds to recover; SMC09 Fig. 7).
     relocalise: after being lifted, explore until the map recognises the place changes the
         robot sees (:class:`~hippo.cognitive_map.localise.MapLocaliser`) instead of for
-        ``settle_time``; None (default): ``settle_time``. Learned place cells can stay on the
-        old place for 5-13 s of movement after a kidnap (goal arena, seed 0).
+        ``settle_time``; None (default): ``settle_time``. It avoids decisions on a stale
+        place but can explore longer: see :mod:`hippo.cognitive_map.localise` for numbers.
     move_timeout, move_margin, default_delay: a move is abandoned (the robot explores) after
         ``move_timeout`` × its learned delay + ``move_margin`` s; a move the map has no delay
         for counts as ``default_delay`` s.

@@ -15,6 +15,15 @@ Weber's tolerance, ``|ln(d / δ)| ≤ ln(1 + delay_tolerance)`` (the first stay 
 so its duration means nothing). The robot is localised after ``n_known`` such events in a row,
 or after ``max_time`` seconds whatever happened (a part of the world the map does not know
 will never be recognised; the robot then goes on with what it perceives).
+
+Measured (place preference, goal arena, learned place cells, 12 rewarded trials per seed,
+gate with ``n_known=1`` against the fixed 6 s): the gate removes the worst detours, those that
+start with a decision on a stale place (longest path 4.3x -> 3.2x the shortest on seed 0,
+6.5x -> 3.2x on seed 101), but while it waits the robot keeps exploring, and a slow
+recognition costs travel of its own (seed 3: new detours of 6.9x and 26.5x; seed 100: three
+more trials over 1.5x). Over seeds 0, 3, 100, 101 the trials over 1.5x went from 12 to 16;
+after a patrol kidnap recognition took 14-21 s (seeds 0-4). It is off by default in
+:class:`~hippo.brain.BrainParams`.
 """
 
 from __future__ import annotations
