@@ -32,6 +32,8 @@ from typing import Any
 
 import numpy as np
 
+from hippo.cli_args import integer, numbers, probability
+from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
 from hippo.io import save_figure
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
@@ -55,35 +57,44 @@ TARGETS = {"gap_to_ceiling": 0.05, "decoder_balanced_accuracy": 0.85}
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--n-rooms", type=int, default=3, help="rooms per flat (>= 2)")
-    parser.add_argument("--arenas", type=int, default=None,
+    parser.add_argument("--n-rooms", type=integer(2, 12), default=3, help="rooms per flat")
+    parser.add_argument("--arenas", type=integer(1, 10_000), default=None,
                         help="number of generated flats (one per seed)")
     add_seeds_argument(parser, "flats to generate (one flat, run and reservoir per seed)")
     add_cache_argument(parser)
-    parser.add_argument("--ticks-per-room", type=int, default=8000,
+    parser.add_argument("--ticks-per-room", type=integer(1000, 10_000_000), default=8000,
                         help="recorded ticks per room of the flat")
-    parser.add_argument("--rho", type=float, default=0.008, help="wall-side switch probability")
-    parser.add_argument("--neurons", type=int, default=600, help="reservoir size")
-    parser.add_argument("--units", type=int, default=0,
+    parser.add_argument("--rho", type=probability, default=0.008,
+                        help="wall-side switch probability per tick")
+    parser.add_argument("--neurons", type=integer(1, 20_000), default=600, help="reservoir size")
+    parser.add_argument("--units", type=integer(0, 500), default=0,
                         help="SFA and ICA units (default 0: twice the number of rooms)")
-    parser.add_argument("--leak", type=parse_leak, default=(0.05, 0.15),
+    parser.add_argument("--leak", type=numbers((1, None), 0.0, 1.0, lo_open=True),
+                        default=(0.05, 0.15),
                         help="leak rates, one per half (default: SMC09's 0.05,0.15)")
-    parser.add_argument("--ica-restarts", type=int, default=10)
-    parser.add_argument("--sfa-cutoff", default="1e-8",
-                        help="relative whitening cutoff, or 'auto' (default: %(default)s)")
-    parser.add_argument("--hold", type=int, default=5,
+    parser.add_argument("--ica-restarts", type=integer(1, 1000), default=10)
+    parser.add_argument("--sfa-cutoff", type=cli_sfa_cutoff, default="1e-8",
+                        help="relative whitening cutoff in (0, 1), or 'auto'")
+    parser.add_argument("--hold", type=integer(1, 10_000), default=5,
                         help="recovered = right for this many consecutive ticks")
-    parser.add_argument("--ceiling", type=int, default=1, choices=[0, 1],
+    parser.add_argument("--ceiling", action=argparse.BooleanOptionalAction, default=True,
                         help="also report the supervised ceiling")
-    parser.add_argument("--figures", type=int, default=1, choices=[0, 1], help="write PNGs")
+    parser.add_argument("--figures", action=argparse.BooleanOptionalAction, default=True,
+                        help="write PNGs")
+
+
+def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
+    """Checks across arguments, before any work."""
+    if args.arenas is not None and not isinstance(args.seeds, int) \
+            and len(args.seeds) < args.arenas:
+        parser.error(f"argument --arenas: {args.arenas} flats need as many seeds; --seeds "
+                     f"gives {len(args.seeds)}")
 
 
 def _seeds(args: argparse.Namespace) -> list[int]:
     seeds = seed_list(args)
     if args.arenas is None:
         return seeds
-    if args.arenas < 1:
-        raise SystemExit(f"--arenas must be >= 1, got {args.arenas}")
     if isinstance(args.seeds, int):
         return [args.seed + i for i in range(args.arenas)]
     if len(seeds) < args.arenas:
@@ -190,8 +201,7 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
     lab_k = room_labels(run, rooms)
     dec_k = _nearest_centroid(Yk, cent)
     correct = (dec_k == lab_k) | (lab_k < 0)
-    real = [e for e in events if 0 < e < len(run)
-            and lab_k[e] >= 0 and room_labels(run, rooms)[e - 1] != lab_k[e]]
+    real = [e for e in events if 0 < e < len(run) and lab_k[e] >= 0 and lab_k[e - 1] != lab_k[e]]
     rec_t = M.recovery_times(correct, real, hold=args.hold)
     fin = rec_t[np.isfinite(rec_t)]
     out.update(kidnap_events=len(real),
@@ -202,8 +212,6 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
 
 
 def run(args: argparse.Namespace) -> dict:
-    if args.n_rooms < 2:
-        raise SystemExit(f"--n-rooms must be >= 2, got {args.n_rooms}")
     out = prepare_out(args.out)
     quick = bool(args.quick)
     seeds = _seeds(args)

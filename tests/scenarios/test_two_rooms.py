@@ -34,8 +34,10 @@ def test_two_rooms_leak_option_and_sweep(tmp_path):
     assert (out / "leak_sweep.png").exists()
     rows = m["leak_sweep"]
     assert len(rows) == 16 and len({tuple(r["leak"]) for r in rows}) == 16
+    # quick seed 0: the best pair reaches ~0.95 (a broken fit stays near 0.5)
+    assert max(r["room_cell_test_balanced_accuracy"] for r in rows) >= 0.85
     for r in rows:
-        assert 0.6 <= r["room_cell_test_balanced_accuracy"] <= 1.0
+        assert 0.5 <= r["room_cell_test_balanced_accuracy"] <= 1.0
         assert r["meets_targets"] == (r["room_cell_test_balanced_accuracy"] >= 0.97
                                       and r["kidnap_recovery_ticks"] <= 15)
     assert m["leak_sweep_meeting_targets"] == [r["leak"] for r in rows if r["meets_targets"]]
