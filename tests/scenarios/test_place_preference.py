@@ -64,9 +64,10 @@ def test_an_untuned_delay_is_learned(tmp_path):
     assert all(4.3 <= w <= 4.3 + 0.45 for w in m["waits_s"])
 
 
-def test_bad_delay_is_refused(tmp_path):
-    with pytest.raises(SystemExit, match="delay"):
+def test_bad_delay_is_refused(tmp_path, capsys):
+    with pytest.raises(SystemExit) as stop:  # a usage error: status 2, before any work
         run_scenario("place-preference", ["--quick", "--delay", "-1", "--out", str(tmp_path)])
+    assert stop.value.code == 2 and "--delay" in capsys.readouterr().err
 
 
 def _still_runs(observations):
