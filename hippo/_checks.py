@@ -227,9 +227,8 @@ _HINTS: dict[type, dict[str, Any]] = {}
 def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarray, float]:
     """The per-tick check of a robot's observation; returns ``(ir, t)``.
 
-    ``obs`` must carry ``ir`` (``n_sensors`` readings in [0, 1]), ``t`` (a finite time no earlier
-    than ``last_t``: a clock running backwards is refused; the same observation may be fed
-    twice, as when a task hands the last observation of a recording to the loop), ``odometry``
+    ``obs`` must carry ``ir`` (``n_sensors`` readings in [0, 1]), ``t`` (a finite time, not
+    earlier than ``last_t``: a clock running backwards is refused), ``odometry``
     (3 finite numbers), ``floor`` (an integer colour id >= 0), ``sound`` and ``moving`` (bools).
     Cheap: one min/max over the readings (NaN fails it too), a few scalar tests.
     """
@@ -249,9 +248,9 @@ def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarr
         raise ValueError(f"obs.ir readings must be finite and in [0, 1], got {ir}")
     if isinstance(t, bool) or not isinstance(t, numbers.Real) or not math.isfinite(t):
         raise ValueError(f"obs.t must be a finite time in s, got {t!r}")
-    if t < last_t:
+    if not t >= last_t:
         raise ValueError(f"obs.t = {t!r} is earlier than the previous tick's {last_t!r}: "
-                         "the clock must run forward")
+                         "the clock must not run backwards")
     try:
         odo = np.asarray(odo, dtype=float)
     except (TypeError, ValueError):

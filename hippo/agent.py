@@ -17,13 +17,12 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
-
 from hippo._checks import check_observation
 from hippo.brain import Brain, BrainParams, Tick
 from hippo.cognitive_map import DriveParams
 from hippo.motor import Motor, MotorParams
 from hippo.places import GroundTruthPlaceCells, LearnedPlaceCells, PlaceSource
+from hippo.seeds import Seeds
 from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
 from hippo.types import GroundTruth, Mode, Observation, Transition
 
@@ -92,7 +91,8 @@ class Agent:
         reward sound; others by :meth:`reward` (e.g. the teacher's end of a checkpoint block).
     params : :class:`AgentParams`.
     sensors, robot : the robot the motor layer drives.
-    seed : seeds the agent's own random choices (planner noise, exploration).
+    seed : the run's seed: the agent's random streams (:mod:`hippo.seeds`: ``brain``,
+        ``motor-explore``, ``motor-steer``).
     """
 
     def __init__(self, places: PlaceSource, *, drives: Mapping[str, DriveParams] | None = None,
@@ -101,11 +101,12 @@ class Agent:
         self.params = params or AgentParams()
         self.robot = robot or RobotParams()
         self.sensors = get_sensor_model(sensors)
+        seeds = Seeds(seed)
         self.motor = Motor(self.params.motor, dt=self.params.brain.dt, sensors=self.sensors,
-                           robot=self.robot, rng_explore=np.random.default_rng([seed, 8]),
-                           rng_steer=np.random.default_rng([seed, 9]))
+                           robot=self.robot, rng_explore=seeds.generator("motor-explore"),
+                           rng_steer=seeds.generator("motor-steer"))
         self.brain = Brain(places, drives=drives, params=self.params.brain,
-                           occluded=self.motor.boxed_in, seed=seed)
+                           occlusion=self.motor.avoid, seed=seed)
         self.last_tick: Tick | None = None
         self._last_t = -math.inf  # the clock must run forward (check_observation)
 

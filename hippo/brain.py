@@ -36,11 +36,13 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite, check_positive
+from hippo._checks import check_fields, check_finite, check_positive
 from hippo.cognitive_map import Action, DriveParams, Drives, Planner, PlannerParams, TransitionGraph
+from hippo.cognitive_map.localise import LocaliserParams, MapLocaliser
 from hippo.decision import Decider
 from hippo.perception.states import StateEvent, StateLayer, StateLayerParams
 from hippo.places import PlaceSource
+from hippo.seeds import Seeds
 from hippo.sim.odometry import PathIntegrator
 from hippo.timing import NonOccurrenceParams, SpectralParams, TransitionParams
 from hippo.timing.chain import TimingChain, TimingStep
@@ -59,6 +61,10 @@ class BrainParams:
         many consecutive ticks of it, so a stall at a corner is not a stop.
     settle_time: after being lifted the robot explores this long (s) before it trusts its
         place state again (learned place cells need a few seconds to recover; SMC09 Fig. 7).
+    relocalise: after being lifted, explore until the map recognises the place changes the
+        robot sees (:class:`~hippo.cognitive_map.localise.MapLocaliser`) instead of for
+        ``settle_time``; None (default): ``settle_time``. Learned place cells can stay on the
+        old place for 5-13 s of movement after a kidnap (goal arena, seed 0).
     move_timeout, move_margin, default_delay: a move is abandoned (the robot explores) after
         ``move_timeout`` × its learned delay + ``move_margin`` s; a move the map has no delay
         for counts as ``default_delay`` s.
@@ -81,12 +87,20 @@ class BrainParams:
         reaches this fraction of the most active place's, as if it had entered ``C`` (0
         disables). Learned place cells split a stretch of track between prototypes that
         alternate from lap to lap; the taught one need not win on every pass.
+    forget: at every transition learned, each transition's strength is multiplied by this and
+        transitions below 0.05 are forgotten (``TransitionGraph.decay``; re-observing one resets
+        its strength to 1); the drives' links to forgotten transitions go with them. 1 (the
+        default): the map never forgets, as in HIREL's experiments.
+
+    Extinction of goal links (HIREL eq. 4's decay term) is a drive's parameter
+    (``DriveParams.extinction``, default 0): see :meth:`hippo.decision.Decider.check_wait`.
     """
 
     dt: float = 0.2
     still_turn: float = 0.15
     proprio_ticks: int = 2
     settle_time: float = 6.0
+    relocalise: LocaliserParams | None = None
     move_timeout: float = 3.0
     move_margin: float = 5.0
     default_delay: float = 5.0
@@ -99,6 +113,7 @@ class BrainParams:
     cycle_window: float = 60.0
     cycle_explore: float = 20.0
     coactive: float = 0.6
+    forget: float = 1.0
     states: StateLayerParams = field(default_factory=StateLayerParams)
     spectral: SpectralParams = field(default_factory=SpectralParams)
     #: latency 0.4 s = one tick from decision to motion + one tick of proprioceptive debounce
@@ -108,6 +123,7 @@ class BrainParams:
     planner: PlannerParams = field(default_factory=lambda: PlannerParams(w=0.9, noise=0.01))
 
     def __post_init__(self) -> None:
+        check_fields(self)
         check_positive("dt", self.dt)
         check_positive("still_turn", self.still_turn, allow_zero=True)
         check_positive("move_timeout", self.move_timeout)
@@ -117,7 +133,7 @@ class BrainParams:
             raise ValueError(f"proprio_ticks must be >= 1, got {self.proprio_ticks}")
         check_positive("settle_time", self.settle_time, allow_zero=True)
         check_positive("turn_limit", self.turn_limit)
-        for name in ("coactive", "leave_fraction", "stop_lead", "turn_discount"):
+        for name in ("coactive", "leave_fraction", "stop_lead", "turn_discount", "forget"):
             v = getattr(self, name)
             if not 0.0 <= v <= 1.0:
                 raise ValueError(f"{name} must lie in [0, 1], got {v}")
@@ -167,54 +183,44 @@ class Brain:
     drives : drive name -> :class:`DriveParams`. The drive ``"sound"`` is satisfied by the
         reward sound; others by :meth:`reward` (e.g. the teacher's end of a checkpoint block).
     params : :class:`BrainParams`.
-    occluded : ``occluded(obs) -> bool``: something is pressed against the robot and its
-        distance sensors see only that (the teacher's block); the place cells then keep
-        hearing the last clear view. Default: never.
-    seed : seeds the brain's own random choices (planner noise, exploration of known moves).
+    occlusion : an object whose ``boxed_in(obs) -> bool`` says that something is pressed
+        against the robot and its distance sensors see only that (the teacher's block; the
+        motor layer's :class:`~hippo.sim.controllers.ObstacleAvoidance`); the place cells then
+        keep hearing the last clear view. Default: never. (An object, not a callable, so that
+        a whole robot can be snapshotted.)
+    seed : the run's seed; the brain's own random choices (planner noise, exploration of known
+        moves) come from its stream ``"brain"`` (:mod:`hippo.seeds`), or from ``rng``.
     """
 
     def __init__(self, places: PlaceSource | None = None, *,
                  drives: Mapping[str, DriveParams] | None = None,
-                 params: BrainParams | None = None, occluded: Any = None,
+                 params: BrainParams | None = None, occlusion: Any = None,
                  seed: int = 0, rng: np.random.Generator | None = None) -> None:
         self.places = places
         self.p = p = params or BrainParams()
-        self.rng = rng if rng is not None else np.random.default_rng([seed, 7])
+        self.rng = rng if rng is not None else Seeds(seed).generator("brain")
         self.layer = StateLayer(p.states, n_place=places.n_units if places is not None else 0)
         self.timing = TimingChain(p.spectral, p.transitions, p.non_occurrence)
         self.graph = TransitionGraph()
         self.drives = Drives(dict(drives if drives is not None else {"sound": DriveParams()}))
         self.planner = Planner(p.planner, seed=seed)
         self.pi = PathIntegrator()
-        self.occluded = occluded
+        self.occlusion = occlusion
         self.t = 0.0
         self.decide = Decider(self)
         self._moving = True
         self._flip = 0
         self._settle_until = -math.inf
+        self.localiser = None if p.relocalise is None else MapLocaliser(p.relocalise)
         self._clear_view: np.ndarray | None = None
         self._reset_episode()
 
-    # the neural parts under their usual names
-    @property
-    def spectral(self):
-        return self.timing.spectral
-
-    @property
-    def cells(self):
-        return self.timing.cells
-
-    @property
-    def nonocc(self):
-        return self.timing.nonocc
-
-    @property
-    def mode(self) -> Mode:
-        return self.decide.mode
-
-    @property
-    def current(self) -> Transition | None:
-        return self.decide.current
+    # the neural parts under their usual names, and what the decider is doing
+    spectral = property(lambda self: self.timing.spectral, doc="the SpectralTiming")
+    cells = property(lambda self: self.timing.cells, doc="the TransitionCells")
+    nonocc = property(lambda self: self.timing.nonocc, doc="the NonOccurrence neurons")
+    mode = property(lambda self: self.decide.mode, doc="the motor Mode chosen")
+    current = property(lambda self: self.decide.current, doc="the transition executed")
 
     # -- episode bookkeeping ------------------------------------------------------------------
     def _reset_episode(self) -> None:
@@ -242,6 +248,9 @@ class Brain:
         self._reset_episode()
         self.decide.lifted()
         self._settle_until = self.t + self.p.settle_time
+        if self.localiser is not None:
+            self.localiser.reset(self.t)
+            self._settle_until = math.inf   # until the map recognises where the robot is
 
     def reward(self, drive: str) -> None:
         """An external satisfaction of ``drive``: linked to the next transition performed."""
@@ -273,7 +282,8 @@ class Brain:
         ir = check_finite("sensor readings", obs.ir)
         self.t = float(obs.t)
         self.pi.step(obs.odometry)
-        if self.occluded is not None and self.occluded(obs) and self._clear_view is not None:
+        if (self.occlusion is not None and self.occlusion.boxed_in(obs)
+                and self._clear_view is not None):
             # occluded: the distance sensors see only what is pressed against the robot. They
             # say nothing about the place, and feeding them to the reservoir would corrupt its
             # memory for minutes; the place cells keep hearing the last clear view
@@ -294,6 +304,11 @@ class Brain:
         ev = seen.event
         self.readouts = seen.timing.readouts
         self.non_occurrence = seen.timing.omitted  # type: ignore[assignment]
+        if self.t < self._settle_until and self.localiser is not None:
+            if ev.changed and self.layer.key(ev.winner).kind == "place":
+                self.localiser.observe(ev.winner, self.t, self.graph)
+            if self.localiser.check(self.t):
+                self._settle_until = self.t  # re-localised: decide from this tick on
         if self.t < self._settle_until:
             self.decide.mode = Mode.EXPLORE
             return self._tick(ev.changed, settling=True)
@@ -360,6 +375,8 @@ class Brain:
         dist = math.hypot(x1 - x0, y1 - y0)
         action = Action.wait() if wait or dist < 1e-6 else Action.move(
             math.atan2(y1 - y0, x1 - x0), dist)
+        if self.p.forget < 1.0 and self.graph.decay(self.p.forget):
+            self.drives.prune(self.graph)
         tr = self.graph.add_transition(prev, new, action, delay, time=self.t)
         self.graph.observe_position(new, (x1, y1))
         self.last_transition = tr

@@ -277,10 +277,14 @@ class Decider:
         over = (ro is not None and ro.delay_over) if own else (a, s) in b.non_occurrence
         if not over:
             return
-        # the wait is over: inhibit the drives that chose it, then move on from the place
+        # the wait is over: inhibit the drives that chose it, then move on from the place; a
+        # predicted reward that did not come also weakens the drive's link to the wait (HIREL
+        # eq. 4's decay term, Drives.extinguish: no change with the default extinction 0)
         ctx = b.layer.key(a).context if b.kind(a) == StateKind.STILL else a
         for name in b.drives.names:
             if (a, s) in b.drives.links(name) and name not in self._inhibited:
+                if not own:
+                    b.drives.extinguish(name, (a, s))
                 b.drives.inhibit(name)
                 self._inhibited[name] = ctx if ctx is not None else a
         self._waiting_on = None

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from hippo._checks import check_positive
+from hippo._checks import check_fields, check_positive
 from hippo.sim.controllers import (
     ObstacleAvoidance,
     WallFollower,
@@ -59,6 +59,7 @@ class MotorParams:
     wall_tolerance: float = 2.0
 
     def __post_init__(self) -> None:
+        check_fields(self)
         check_positive("speed", self.speed)
         check_positive("stall_speed", self.stall_speed, allow_zero=True)
         check_positive("stall_time", self.stall_time, allow_zero=True)

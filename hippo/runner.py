@@ -26,6 +26,7 @@ SCENARIOS: dict[str, str] = {
     "timing-demo": "hippo.scenarios.timing_demo",
     "place-preference": "hippo.scenarios.place_preference",
     "patrol": "hippo.scenarios.patrol",
+    "rooms": "hippo.scenarios.rooms",
 }
 #: scenario name -> what it does, in one line (``hippo list``)
 DESCRIPTIONS: dict[str, str] = {
@@ -39,6 +40,8 @@ DESCRIPTIONS: dict[str, str] = {
                         "in extinction",
     "patrol": "HIREL III-B: learn a loop on a leash and three checkpoint waits, then patrol "
               "alone",
+    "rooms": "place cells in generated multi-room flats: one cell per room, decoding over "
+             "rooms, kidnapping, the supervised ceiling",
 }
 
 

@@ -33,6 +33,7 @@ import importlib
 import json
 import math
 import os
+import types
 from pathlib import Path
 from typing import Any
 
@@ -132,6 +133,10 @@ class _Encoder:
                                       f"{path}.nodes"),
                     "edges": self.enc([(u, v, dict(d)) for u, v, d in obj.edges(data=True)],
                                       f"{path}.edges")}
+        if isinstance(obj, types.MethodType):  # a bound method of a hippo object (a callback)
+            owner = obj.__self__
+            _check_class(type(owner), path)
+            return {"$method": obj.__func__.__name__, "self": self.enc(owner, f"{path}.self")}
         if isinstance(obj, np.dtype):
             return {"$dtype": obj.str}
         if isinstance(obj, type) and issubclass(obj, np.generic):
@@ -141,6 +146,15 @@ class _Encoder:
             _check_class(obj, path)
             return {"$class": f"{obj.__module__}:{obj.__qualname__}"}
         _check_class(cls, path)
+        custom = getattr(cls, "__snapshot_state__", None)
+        if custom is not None:  # the class says what its state is (e.g. World: no pymunk)
+            r = self._remember(obj)
+            try:
+                st = obj.__snapshot_state__()
+            except TypeError as exc:
+                raise SnapshotError(f"{path}: {exc}") from None
+            return {"$custom": f"{cls.__module__}:{cls.__qualname__}", "id": r,
+                    "state": self.enc(st, f"{path}.state")}
         r = self._remember(obj)
         state = _attributes(obj)
         return {"$obj": f"{cls.__module__}:{cls.__qualname__}", "id": r,
@@ -268,6 +282,16 @@ class _Decoder:
             for u, v, d in self.dec(e["edges"]):
                 g.add_edge(u, v, **d)
             return g
+        if tag == "$method":
+            owner = self.dec(e["self"])
+            name = _text(e["$method"])
+            cls = type(owner)
+            if not (cls.__module__ == "hippo" or cls.__module__.startswith("hippo.")):
+                raise CorruptFileError(f"a method of a non-hippo object {cls.__qualname__}")
+            func = getattr(cls, name, None)
+            if not callable(func) or name.startswith("__"):
+                raise CorruptFileError(f"{cls.__qualname__} has no method {name!r}")
+            return types.MethodType(func, owner)
         if tag in ("$dtype", "$nptype"):
             dt = np.dtype(_text(e[tag]))
             if dt.kind not in _ARRAY_DTYPES:
@@ -275,6 +299,15 @@ class _Decoder:
             return dt if tag == "$dtype" else dt.type
         if tag == "$class":
             return _import_class(e["$class"])
+        if tag == "$custom":
+            cls = _import_class(e["$custom"])
+            restore = getattr(cls, "__snapshot_restore__", None)
+            if restore is None:
+                raise CorruptFileError(f"{cls.__qualname__} has no snapshot restore")
+            r = e.get("id")
+            obj = restore(self.dec(e["state"]))
+            e = {"id": r}
+            return self._put(e, obj)
         if tag == "$obj":
             cls = _import_class(e["$obj"])
             obj = self._put(e, cls.__new__(cls))
@@ -303,6 +336,14 @@ def _list(v: Any) -> list[Any]:
     return v
 
 
+_PLAIN_TOPS = {"builtins:dict": dict, "builtins:tuple": tuple, "builtins:list": list}
+
+
+def _top_class(spec: Any) -> type:
+    """The class a snapshot holds: a hippo class, or a dict/tuple/list of parts."""
+    return _PLAIN_TOPS.get(spec) or _import_class(spec)
+
+
 def _import_class(spec: Any) -> type:
     """A class defined in the hippo package, by ``module:QualName``; nothing else."""
     spec = _text(spec)
@@ -327,7 +368,8 @@ def _sha256(path: Path) -> str:
 
 
 def save_snapshot(obj: Any, folder: str | os.PathLike) -> Path:
-    """Write the whole state of ``obj`` (a hippo object and everything it holds) to ``folder``.
+    """Write the whole state of ``obj`` (a hippo object and everything it holds, or a dict,
+    tuple or list of such parts, e.g. ``{"agent": agent, "world": world}``) to ``folder``.
 
     Raises :class:`SnapshotError` naming the attribute that cannot be stored (e.g. an open
     simulator or a lambda). Returns the folder.
@@ -370,7 +412,7 @@ def load_snapshot(folder: str | os.PathLike, expect: type | None = None) -> Any:
         if sums.get(n) != _sha256(folder / n):
             raise CorruptFileError(f"{folder}/{n} does not match its checksum (damaged, or "
                                    "written by another save)")
-    cls = _import_class(man.get("class"))
+    cls = _top_class(man.get("class"))
     if expect is not None and not issubclass(cls, expect):
         raise CorruptFileError(f"{folder} holds a {cls.__qualname__}, not a {expect.__qualname__}")
     arrays = load_npz(folder / "arrays.npz")
@@ -379,8 +421,7 @@ def load_snapshot(folder: str | os.PathLike, expect: type | None = None) -> Any:
         obj = _Decoder(arrays).dec(tree)
     except CorruptFileError as exc:
         raise CorruptFileError(f"{folder}: {exc}") from exc
-    except (KeyError, TypeError, ValueError, AttributeError, OverflowError,
-            RecursionError, nx.NetworkXError) as exc:
+    except Exception as exc:  # any failure to rebuild from the file is a damaged snapshot
         raise CorruptFileError(f"{folder}: bad snapshot content ({exc!r:.200})") from exc
     if type(obj) is not cls:
         raise CorruptFileError(f"{folder}: the state holds a {type(obj).__qualname__}, the "

@@ -40,6 +40,7 @@ Example::
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import hashlib
 import io
@@ -110,11 +111,14 @@ def grid(scenario: str, seeds: Sequence[int], params: Mapping[str, Sequence[str]
 
 
 def scenario_task(cell: Cell, out: str) -> dict[str, Any]:
-    """Run ``cell``'s scenario with its output in ``out``; returns the scenario's metrics."""
+    """Run ``cell``'s scenario with its output in ``out``; returns the scenario's metrics (what
+    it prints goes to ``out/log.txt``, not to the sweep's terminal)."""
     from hippo.runner import run_scenario
 
     os.environ.setdefault("HIPPO_QUIET", "1")
-    return run_scenario(cell.scenario, cell.argv(Path(out)))
+    Path(out).mkdir(parents=True, exist_ok=True)
+    with open(Path(out) / "log.txt", "w") as log, contextlib.redirect_stdout(log):
+        return run_scenario(cell.scenario, cell.argv(Path(out)))
 
 
 def _run_cell(task: Callable[[Cell, str], Mapping[str, Any]], cell: Cell, out: str,
@@ -232,8 +236,8 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
         if client is None:
             from hippo._threads import n_workers, usable_cores
 
-            client, own_cluster = _connect(scheduler, n_workers(workers) if workers else
-                                           usable_cores())
+            client, own_cluster = _connect(scheduler, usable_cores() if workers is None
+                                           else n_workers(workers))
             own_client = client
         try:
             _execute(client, todo, out, task, int(retries), result, as_completed)
@@ -341,7 +345,11 @@ def _write_table(result: SweepResult, parquet: bool) -> None:
         writer.writerow({k: _cell_text(r.get(k)) for k in cols})
     atomic_write_text(result.out / "results.csv", buf.getvalue())
     if parquet:
-        import pandas as pd
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("--parquet needs pandas and pyarrow: pip install pandas pyarrow "
+                              "(results.csv is written)") from None
 
         tmp = result.out / ".results.parquet.tmp"
         pd.DataFrame(result.rows, columns=cols).to_parquet(tmp)
@@ -404,6 +412,10 @@ def sweep_main(argv: Sequence[str]) -> int:
     ap.add_argument("--metric", default=None, help="metric of the summary figure")
     ap.add_argument("--parquet", action="store_true", help="also write results.parquet")
     a = ap.parse_args(argv)
+    if a.workers is not None and a.workers < 1:
+        ap.error(f"--workers must be >= 1, got {a.workers}")
+    if a.retries < 0:
+        ap.error(f"--retries must be >= 0, got {a.retries}")
     params: dict[str, list[str]] = {}
     parser, _ = scenario_parser(a.scenario)
     known = {s.lstrip("-") for act in parser._actions for s in act.option_strings}

@@ -28,11 +28,16 @@ def test_ground_truth_place_cells_equation():
         pc.step(World(arenas.goal_arena(), seed=0).observe())
 
 
-def test_transitions_carry_path_integrated_headings():
+@pytest.mark.parametrize("contexts", [False, True])
+def test_transitions_carry_path_integrated_headings(contexts):
+    from hippo.perception.contexts import ContextParams
+    from hippo.perception.states import StateLayerParams
+
     _arena, world = corridor_world()
     centres = np.array([[x, 15.0] for x in range(20, 200, 30)])
+    params = AgentParams(states=StateLayerParams(contexts=ContextParams() if contexts else None))
     agent = Agent(GroundTruthPlaceCells(centres, sigma=8.0), drives={"sound": DriveParams()},
-                  sensors=world.sensors, robot=world.robot, seed=0)
+                  params=params, sensors=world.sensors, robot=world.robot, seed=0)
     obs = world.reset(0)
     for _ in range(300):  # drive east along the corridor with the wall follower
         obs = world.step(agent.step(obs, world.truth))
@@ -43,6 +48,8 @@ def test_transitions_carry_path_integrated_headings():
         assert b == a + 1
         assert abs(agent.graph.action(t).heading) < 0.35
         assert agent.graph.action(t).distance == pytest.approx(30.0, abs=8.0)
+        # with context states the map's states are the places' context states
+        assert all((agent.layer.clone(x) is not None) == contexts for x in t)
 
 
 def test_taught_wait_is_reproduced_at_the_learned_delay():
@@ -235,3 +242,64 @@ def test_a_wanted_stop_is_recognised_from_a_coactive_place():
     agent.p = AgentParams(coactive=0.0)
     decide.recognise_stop()
     assert agent.mode == Mode.MOVE
+
+
+class _StaleCells:
+    """Ground-truth fields that, after a kidnap (a jump of the true position), keep reporting
+    the old place for ``lag`` ticks, as a reservoir's fading memory does."""
+
+    kind = "stale"
+
+    def __init__(self, centres: np.ndarray, lag: int) -> None:
+        self.cells = GroundTruthPlaceCells(centres, sigma=8.0)
+        self.n_units = self.cells.n_units
+        self.lag, self.stale, self.last, self.pos = lag, 0, None, None
+
+    def step(self, obs, truth=None):
+        pos = np.asarray(truth.pose[:2])
+        if self.pos is not None and np.hypot(*(pos - self.pos)) > 20.0:
+            self.stale = self.lag
+        self.pos = pos
+        if self.stale > 0:
+            self.stale -= 1
+            return self.last
+        self.last = self.cells.step(obs, truth)
+        return self.last
+
+    def reset(self) -> None:
+        pass
+
+    def prime(self, sensors) -> None:
+        pass
+
+
+@pytest.mark.parametrize("relocalise", [False, True])
+def test_after_a_kidnap_the_first_decision_waits_for_the_map_to_recognise_the_place(
+        relocalise):
+    from hippo.cognitive_map.localise import LocaliserParams
+
+    _arena, world = corridor_world()
+    centres = np.array([[x, 15.0] for x in range(20, 200, 30)])
+    params = AgentParams(relocalise=LocaliserParams() if relocalise else None)
+    agent = Agent(_StaleCells(centres, lag=50), drives={"sound": DriveParams()}, params=params,
+                  sensors=world.sensors, robot=world.robot, seed=0)
+    obs = world.reset(0)
+    for _ in range(400):  # learn the eastward places and moves
+        obs = world.step(agent.step(obs, world.truth))
+    world.place_robot(15, 15, 0.0)
+    agent.lifted()
+    first = None
+    for _ in range(300):
+        obs = world.step(agent.step(obs, world.truth))
+        if first is None and agent.state is not None:
+            first = (agent.layer.key(agent.state).index, world.truth.pose[0])
+            break
+    assert first is not None
+    unit, x = first
+    if relocalise:
+        # the first decision is taken on the place the robot is in (a known move led there)
+        assert abs(centres[unit, 0] - x) < 20.0
+        assert agent.brain.localiser.localised and agent.brain.localiser.time_to_localise > 6.0
+    else:
+        # after the fixed 6 s the cells, stale for 10 s, still report the far end
+        assert abs(centres[unit, 0] - x) > 60.0

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import importlib.util
 import os
 import signal
 import sys
@@ -89,10 +90,11 @@ def test_sweep_gathers_a_table_and_resumes(tmp_path, client):
     assert again.ran == 0 and again.skipped == 6 and len(again.rows) == 6
     assert all((tmp_path / "cells" / c.id / "ran").read_text() == "x" for c in cells)
     # a grown grid runs only the new cells
+    parquet = all(importlib.util.find_spec(m) for m in ("pandas", "pyarrow"))
     more = run_sweep(grid("demo", [0, 1, 2, 3], {"gain": ["1", "3"]}), tmp_path,
-                     client=client, task=square_task, parquet=True)
+                     client=client, task=square_task, parquet=parquet)
     assert more.ran == 2 and more.skipped == 6 and len(more.rows) == 8
-    assert (tmp_path / "results.parquet").exists()
+    assert (tmp_path / "results.parquet").exists() == parquet
 
 
 def test_failed_cells_are_retried_and_reported(tmp_path, client):
@@ -117,6 +119,10 @@ def test_cli_names_a_bad_parameter(capsys):
     with pytest.raises(SystemExit):
         sweep_main(["timing-demo", "--param", "no-such-option", "1"])
     assert "no-such-option" in capsys.readouterr().err
+    for bad in (["--workers", "0"], ["--retries", "-1"]):
+        with pytest.raises(SystemExit):
+            sweep_main(["timing-demo", *bad])
+        assert bad[0] in capsys.readouterr().err
 
 
 @pytest.mark.slow

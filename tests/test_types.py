@@ -76,3 +76,20 @@ def test_the_observation_holds_only_senses_and_the_truth_is_apart():
     assert truth.pose == world.pose and truth.speed > 0
     with pytest.raises(AttributeError):
         obs.t = 1.0  # frozen
+
+
+def test_named_seed_streams_are_independent_and_reproducible():
+    from hippo.seeds import STREAMS, Seeds
+
+    s = Seeds(5)
+    a = s.generator("exploration").random(4)
+    np.testing.assert_array_equal(a, Seeds(5).generator("exploration").random(4))
+    assert not np.allclose(a, s.generator("pauses").random(4))
+    assert not np.allclose(a, Seeds(6).generator("exploration").random(4))
+    # the keys hippo always used: the named streams are the old numbered ones
+    np.testing.assert_array_equal(a, np.random.default_rng([5, STREAMS["exploration"]]).random(4))
+    assert len(set(STREAMS.values())) == len(STREAMS)
+    with pytest.raises(KeyError, match="unknown random stream"):
+        s.generator("teacher")
+    with pytest.raises(ValueError, match="seed"):
+        Seeds(-1)

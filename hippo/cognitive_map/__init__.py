@@ -24,6 +24,7 @@ from hippo.cognitive_map.graph import (
     TransitionGraph,
     TransitionIndex,
 )
+from hippo.cognitive_map.localise import LocaliserParams, MapLocaliser
 from hippo.cognitive_map.planner import (
     Activity,
     Choice,
@@ -33,6 +34,7 @@ from hippo.cognitive_map.planner import (
     propagate,
     propagate_reference,
 )
+from hippo.cognitive_map.quality import next_state_bits, states_per_place, transitions_of
 
 __all__ = [
     "MOVE",
@@ -42,12 +44,17 @@ __all__ = [
     "Choice",
     "DriveParams",
     "Drives",
+    "LocaliserParams",
+    "MapLocaliser",
     "Planner",
     "PlannerParams",
     "Transition",
     "TransitionGraph",
     "TransitionIndex",
     "drive_input",
+    "next_state_bits",
     "propagate",
     "propagate_reference",
+    "states_per_place",
+    "transitions_of",
 ]

@@ -26,8 +26,11 @@ rule is the event form of HIREL's satisfaction rule (eq. 4,
 - when ``g`` was performed and the predicted reward did not come (:meth:`Drives.extinguish`):
   ``W_g ← (1 − γ) W_g``; a link below ``min_weight`` is dropped.
 
-Both keep ``W`` in [0, 1]. The drive input of a transition to the planner is
-``max_d level(d) · W_{d, g}`` (see :mod:`hippo.cognitive_map.planner`).
+Both keep ``W`` in [0, 1]. This is eq. 4's one home: the brain links a drive on every reward
+(:meth:`Drives.reward`) and, when a wait for a predicted reward ends by non-occurrence, calls
+:meth:`Drives.extinguish` (a no-op with the default ``extinction = 0``). The drive input of a
+transition to the planner is ``max_d level(d) · W_{d, g}`` (see
+:mod:`hippo.cognitive_map.planner`).
 """
 
 from __future__ import annotations

@@ -1,10 +1,12 @@
 """A wrapper that adds hippo's own cells to a robot environment's observation.
 
-:class:`HippoCells` runs, at every tick, the same perception as hippo's agent:
+:class:`HippoCells` runs, at every tick, the same perception as hippo's agent (the brain's
+neural chain, :meth:`hippo.brain.Brain.perceive`)::
 
     place = PlacePrototypes(RCSFAICA.step(ir))      learned place cells (or the ICA units)
     event = StateLayer.step(place, floor, sound, moving)    winner-take-all state, sensory events
     time  = SpectralTiming.step(event.winner)        the winner's battery of time cells
+            (then the transition cells and non-occurrence neurons, as in the brain)
 
 and returns the observation with two more keys: ``place`` (place-cell activities) and ``time``
 (the time cells of the current state: bumps centred on log-spaced delays since the last
@@ -23,13 +25,15 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
+from hippo.brain import Brain, BrainParams
 from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.prototypes import PlacePrototypes
-from hippo.perception.states import StateLayer, StateLayerParams
-from hippo.timing.spectral import SpectralParams, SpectralTiming
+from hippo.perception.states import StateLayerParams
+from hippo.tasks.explore import PLACE_STATES
+from hippo.timing.spectral import SpectralParams
 
 #: state-layer settings for place activities in [0, 1] (prototypes), as in hippo's scenarios
-PROTOTYPE_STATES = StateLayerParams(normalize="fixed", place_scale=0.5, context_time=1.0)
+PROTOTYPE_STATES = PLACE_STATES
 
 
 class HippoCells(gym.Wrapper, gym.utils.RecordConstructorArgs):
@@ -85,8 +89,11 @@ class HippoCells(gym.Wrapper, gym.utils.RecordConstructorArgs):
                              "would change the size of the observation; use recruit_threshold=0")
         self.place_cells = copy.deepcopy(place_cells)
         self.prototypes = copy.deepcopy(prototypes)
-        self.layer = StateLayer(states or (PROTOTYPE_STATES if prototypes is not None else None))
-        self.timing = SpectralTiming(timing)
+        layer_params = states or (PROTOTYPE_STATES if prototypes is not None else None)
+        self.brain = Brain(params=BrainParams(
+            states=layer_params if layer_params is not None else StateLayerParams(),
+            spectral=timing if timing is not None else SpectralParams()))
+        self.layer, self.timing = self.brain.layer, self.brain.spectral
         self.dt = float(env.unwrapped.world.dt)
         if prototypes is not None:
             n_place, place_space = prototypes.n_units, (0.0, 1.0)
@@ -101,9 +108,9 @@ class HippoCells(gym.Wrapper, gym.utils.RecordConstructorArgs):
     def _cells(self, obs: dict[str, Any], info: dict[str, Any]) -> dict[str, Any]:
         y = self.place_cells.step(obs["ir"])
         place = y if self.prototypes is None else self.prototypes.step(y)
-        event = self.layer.step(place, colour=int(obs["floor"]), sound=bool(obs["sound"]),
-                                moving=bool(obs["moving"]), dt=self.dt)
-        battery = self.timing.step(event.winner, self.dt)
+        seen = self.brain.perceive(place, colour=int(obs["floor"]), sound=bool(obs["sound"]),
+                                   moving=bool(obs["moving"]), dt=self.dt)
+        event, battery = seen.event, seen.timing.battery
         info["hippo_state"] = event.winner
         info["hippo_event"] = bool(event.changed)
         return {**obs, "place": np.asarray(place, dtype=np.float32),
@@ -116,6 +123,7 @@ class HippoCells(gym.Wrapper, gym.utils.RecordConstructorArgs):
         self.place_cells.reset_state()
         self.layer.reset(keep_states=True)
         self.timing.reset()
+        self.brain.nonocc.reset()
         return self._cells(obs, info), info
 
     def step(self, action: Any) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:

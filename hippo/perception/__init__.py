@@ -9,9 +9,12 @@
 * :class:`PlacePrototypes` — radial-basis place cells over the RC-SFA-ICA population vector.
 * :class:`StateLayer` — the multimodal winner-take-all state layer (places, colour, sound,
   proprioception) with hysteresis.
+* :class:`ContextStates` — places split by the way the robot came in, and merged when they take
+  turns (online, USM-style; CSCG's clones), usable alone or inside the state layer.
 * :mod:`hippo.perception.metrics` — place fields, localization, decoding, recovery time.
 """
 
+from hippo.perception.contexts import ContextParams, ContextStates
 from hippo.perception.ica import FastICA, ICAConvergenceWarning, ICAParams
 from hippo.perception.place_cells import (
     ICANN09,
@@ -31,6 +34,8 @@ __all__ = [
     "RCSFAICA",
     "SFA",
     "SMC09",
+    "ContextParams",
+    "ContextStates",
     "Decimator",
     "FastICA",
     "ICAConvergenceWarning",

@@ -60,6 +60,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from hippo._checks import check_fields, check_finite, check_positive, check_range
+from hippo.perception.contexts import ContextParams, ContextStates
 
 __all__ = ["EVENT_KINDS", "StateEvent", "StateKey", "StateLayer", "StateLayerParams"]
 
@@ -70,7 +71,9 @@ _CONTEXT_KINDS = ("place", "colour")
 
 
 class StateKey(NamedTuple):
-    """Identity of a state: its kind, unit index or colour id, and context state id."""
+    """Identity of a state: its kind, unit index or colour id, and context state id. A place
+    split by context (``StateLayerParams.contexts``) has one state per context, all with the
+    key of the place; :meth:`StateLayer.clone` tells them apart."""
 
     kind: str
     index: int | None = None
@@ -105,6 +108,11 @@ class StateLayerParams:
         robot stops (noisy learned place cells between two fields, or the obstacle that stopped
         the robot seen by its distance sensors) is then not what the stop is bound to: the
         place before it is. Colours bind at once (a floor colour is not noisy).
+    contexts: split places into context states by the way the robot came in, and merge places
+        that take turns (:mod:`hippo.perception.contexts`); None (default): one state per
+        place cell. A place that wins is then reported as its context state (key ``("place",
+        unit, None)``, :meth:`StateLayer.clone` its context id); while it holds, the
+        competition uses the strongest unit of the places merged with it.
     """
 
     margin: float = 0.15
@@ -120,6 +128,7 @@ class StateLayerParams:
     transient: tuple[str, ...] = ("moving",)
     transient_time: float = 1.0
     context_time: float = 0.0
+    contexts: ContextParams | None = None
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -175,6 +184,8 @@ def _flag(name: str, value: object) -> bool | None:
 def _colour(value: object) -> int | None:
     if value is None:
         return None
+    if type(value) is int and value >= 0:  # the usual case, checked without numpy
+        return None if value == 0 else value
     if isinstance(value, (bool, np.bool_)):
         raise ValueError(f"colour must be an integer colour id, got {value!r}")
     v = float(check_finite("colour", value))
@@ -219,10 +230,16 @@ class StateLayer:
             self._var = np.ones(0)
             self._evidence = np.zeros(0)
             self._add_places(self._n_place0)
+            cp = self.params.contexts
+            self.contexts: ContextStates | None = None if cp is None else ContextStates(cp)
+            self._clone_of: dict[int, int] = {}           # state id -> context id
+            self._clone_ids: dict[int, int] = {}           # context id -> state id
         else:
             self._mean[:] = 0.0
             self._var[:] = 1.0
             self._evidence[:] = 0.0
+            if self.contexts is not None:
+                self.contexts.reset()  # the way in is unknown after a kidnap
         self.t = 0.0
         self.winner: int | None = None
         self.since = 0.0
@@ -274,6 +291,8 @@ class StateLayer:
         """Human-readable name: ``place 3``, ``colour 2``, ``sound``, ``still@place 3``."""
         k = self.key(state)
         name = k.kind if k.index is None else f"{k.kind} {k.index}"
+        if state in self._clone_of:
+            name += f"|{self._clone_of[state]}"
         if k.context is not None:
             name += "@" + self.describe(k.context)
         return name
@@ -320,6 +339,38 @@ class StateLayer:
         self._evidence = np.concatenate([self._evidence, np.zeros(n)])
         if hasattr(self, "place_activity"):
             self.place_activity = np.concatenate([self.place_activity, np.zeros(n)])
+
+    def clone(self, state: int) -> int | None:
+        """The context id (in :attr:`contexts`) of a context state; None for any other."""
+        self.key(state)
+        return self._clone_of.get(int(state))
+
+    def _units(self, state: int) -> list[int]:
+        """The place units a place state stands for (several once places were merged)."""
+        key = self._keys[state]
+        if key.kind != "place":
+            return []
+        if self.contexts is None or state not in self._clone_of:
+            return [key.index]  # type: ignore[list-item]
+        return [int(u) for u in self.contexts.members(key.index)]
+
+    def _context_state(self, unit: int) -> int:
+        """Place unit ``unit`` won: the id of its context state (learning the way in)."""
+        ctx = self.contexts
+        cid = ctx.observe(int(unit), self.t)  # type: ignore[union-attr]
+        sid = self._clone_ids.get(cid)
+        if sid is None:
+            # a context born of a split or a merge keeps the state id of the oldest context
+            # it replaced, so what the map and the timing learned about it carries over
+            older = [c for c in self._clone_ids if ctx.resolve(c) == cid]  # type: ignore[union-attr]
+            if older:
+                sid = self._clone_ids[min(older)]
+            else:
+                sid = len(self._keys)
+                self._keys.append(StateKey("place", int(ctx.same(int(unit))), None))  # type: ignore[union-attr]
+            self._clone_ids[cid] = sid
+            self._clone_of[sid] = cid
+        return sid
 
     # ---------------------------------------------------------------- competition
     def _places(self, place: object, dt: float) -> np.ndarray:
@@ -444,16 +495,21 @@ class StateLayer:
             new = self._register(StateKey("colour", col, None))
         if new is None and self.winner is not None and pa.size:
             wk = self._keys[self.winner]
-            w_act = (float(pa[wk.index]) if wk.kind == "place"
+            units = self._units(self.winner)
+            w_act = (float(pa[units].max()) if wk.kind == "place"
                      else self._event_level(self.winner, snd, col, mov))
             beating = pa > w_act + p.margin
             if wk.kind == "place":
-                beating[wk.index] = False
+                beating[units] = False
             self._evidence = np.where(beating, self._evidence + dt, 0.0)
             ready = self._evidence >= p.hold_time - 1e-9
             if np.any(ready):
                 new = int(self._place_ids[int(np.argmax(np.where(ready, pa, -np.inf)))])
 
+        if new is not None and self.contexts is not None:
+            nk = self._keys[new]
+            if nk.kind == "place" and new not in self._clone_of:
+                new = self._context_state(nk.index)  # type: ignore[arg-type]
         previous = None
         changed = new is not None and new != self.winner
         if changed:
@@ -471,5 +527,7 @@ class StateLayer:
         self.activity = dict(zip(self._place_ids.tolist(), pa.tolist()))
         if self._keys[self.winner].kind != "place":
             self.activity[self.winner] = self._event_level(self.winner, snd, col, mov)
+        elif self.winner in self._clone_of:
+            self.activity[self.winner] = float(pa[self._units(self.winner)].max())
         novel = not (pa.size and float(pa.max()) >= p.recruit_threshold)
         return StateEvent(self.t, int(self.winner), bool(changed), previous, self.since, novel)

@@ -51,7 +51,16 @@ from hippo.io import save_figure, save_npz
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
 from hippo.progress import Progress
-from hippo.scenarios._common import mean_sd, prepare_out, sfa_cutoff, write_metrics
+from hippo.scenarios._common import (
+    add_cache_argument,
+    add_seeds_argument,
+    cached_recording,
+    mean_sd,
+    prepare_out,
+    seed_list,
+    sfa_cutoff,
+    write_metrics,
+)
 from hippo.sim import arenas
 from hippo.sim.record import record
 
@@ -72,8 +81,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--units", type=integer(1, 500), default=70, help="SFA and ICA units")
     parser.add_argument("--leak", type=number(0.0, 1.0, lo_open=True), default=0.6,
                         help="reservoir leak rate")
-    parser.add_argument("--seeds", type=integer(1, 1000), default=1,
-                        help="reservoirs to repeat over (seeds seed, seed+1, ...)")
+    add_seeds_argument(parser, "reservoirs to repeat over (the exploration run is --seed's)")
+    add_cache_argument(parser)
+    parser.add_argument("--ceiling", action=argparse.BooleanOptionalAction, default=True,
+                        help="also report the supervised ceiling (ridge on the reservoir state)")
     parser.add_argument("--ica-restarts", type=integer(1, 1000), default=3,
                         help="FastICA restarts, best kept by --ica-score (no labels)")
     parser.add_argument("--ica-score", default="kurtosis",
@@ -145,6 +156,17 @@ def _analyse(model: RCSFAICA, U: np.ndarray, labels: np.ndarray, n_train: int,
     }
 
 
+def _ceiling(model: RCSFAICA, U: np.ndarray, res: dict[str, Any], nb: np.ndarray,
+             n_loc: int) -> dict[str, float]:
+    """The supervised ceiling of location decoding: a ridge read-out of the same reservoir
+    state (at the down-sampled rate), 5 blocked folds in time."""
+    X = model.features(U)
+    c = M.ridge_ceiling(X, res["_lab"], n_loc, folds=5, gap=20)
+    return {"ceiling_location_decoding_accuracy": c.accuracy,
+            "ceiling_location_decoding_within_one_step": float(np.mean(nb[c.predicted,
+                                                                           res["_lab"]]))}
+
+
 def _stats(values: list[float]) -> dict[str, Any]:
     mean, sd = mean_sd(values)
     return {"mean": mean, "sd": sd, "per_seed": [float(v) for v in values]}
@@ -162,7 +184,9 @@ def run(args: argparse.Namespace) -> dict:
     n_loc = len(arena.locations)
     nb = M.location_neighbors(arena.locations, walls=arena.wall_array())
     t0 = time.perf_counter()
-    rec = record(arena, ticks, seed=args.seed, rho=args.rho, sensors="ray17", desc="maze")
+    rec = cached_recording(args.cache, f"maze_t{ticks}_rho{args.rho:g}_s{args.seed}",
+                           lambda: record(arena, ticks, seed=args.seed, rho=args.rho,
+                                          sensors="ray17", desc="maze"))
     t_rec = time.perf_counter() - t0
     U = rec.sensors
     n_train = (ticks * 5 // 6) // f * f
@@ -174,23 +198,26 @@ def run(args: argparse.Namespace) -> dict:
     variants: dict[str, list[dict[str, Any]]] = {"rc_sfa_ica": [], "no_reservoir_quadratic": []}
     keep: dict[str, dict[str, Any]] = {}
     fit_s: dict[str, list[float]] = {k: [] for k in variants}
-    jobs = [("rc_sfa_ica", i) for i in range(args.seeds)]
+    seeds = seed_list(args)
+    jobs = [("rc_sfa_ica", s) for s in seeds]
     if args.ablation:
-        jobs.append(("no_reservoir_quadratic", 0))  # deterministic up to the ICA seed
+        jobs.append(("no_reservoir_quadratic", seeds[0]))  # deterministic up to the ICA seed
     with Progress(len(jobs), "maze fits") as bar:
-        for name, i in jobs:
+        for name, seed in jobs:
             if name == "rc_sfa_ica":
                 model = RCSFAICA.icann09(n_reservoir=neurons, leak=args.leak,
-                                         seed=args.seed + i, **common)
+                                         seed=seed, **common)
             else:
                 model = RCSFAICA.icann09(use_reservoir=False, sfa_expansion="quadratic",
-                                         seed=args.seed + i, **common)
+                                         seed=seed, **common)
             t1 = time.perf_counter()
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ICAConvergenceWarning)
                 model.fit(U[:n_train])
             fit_s[name].append(time.perf_counter() - t1)
             res = _analyse(model, U, labels, n_train, nb, n_loc, args.threshold)
+            if name == "rc_sfa_ica" and args.ceiling:
+                res.update(_ceiling(model, U, res, nb, n_loc))
             if name not in keep:
                 keep[name] = res
                 if name == "rc_sfa_ica":
@@ -210,7 +237,7 @@ def run(args: argparse.Namespace) -> dict:
         "downsample": f, "samples": ticks // f, "neurons": neurons, "units": units,
         "leak": args.leak, "rho": args.rho, "ica_restarts": restarts,
         "ica_score": args.ica_score, "threshold": args.threshold,
-        "reservoir_seeds": [args.seed + i for i in range(args.seeds)],
+        "reservoir_seeds": seeds, "recording_seed": args.seed,
         "locations_visited_train": int(np.unique(labels[:n_train]).size),
         "locations_visited_test": int(np.unique(labels[n_train:]).size),
         "cm_per_tick": float(np.mean(np.hypot(np.diff(rec.x), np.diff(rec.y)))),
@@ -245,7 +272,7 @@ def run(args: argparse.Namespace) -> dict:
     if args.figures:
         _figures(out, arena, rec, keep, args.threshold, n_loc)
     write_metrics(out, metrics, summary=(
-        f"maze ({args.seeds} reservoir(s)): {metrics['localized_units']:.1f} of {units} units "
+        f"maze ({len(seeds)} reservoir(s)): {metrics['localized_units']:.1f} of {units} units "
         f"localized; location decoded on the test part "
         f"{metrics['location_decoding_accuracy_test']:.2f} exactly, "
         f"{metrics['location_decoding_within_one_step_test']:.2f} within one step"

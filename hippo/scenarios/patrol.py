@@ -115,112 +115,18 @@ def run(args: argparse.Namespace) -> dict:
     agent = Agent(places, drives=dict.fromkeys(names, drive), params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)
     s = Session(world, agent, log, obs=tour[-1], phase=Phase.LEASH)
-    loop = LapCounter(loop_route)  # laps by progress along the taught route
-
-    def laps() -> float:
-        return loop.update(*s.truth.pose[:2])
-
-    def lap_until(target: float):
-        return lambda o: laps() >= target
-
-    def state_kind() -> StateKind | None:
-        return agent.kind(agent.state) if agent.state is not None else None
-
-    def near(point, radius: float) -> bool:
-        return math.dist(s.truth.pose[:2], point) < radius
-
-    # let the place cells settle on the course before the leash
-    agent.lifted()
-    s.run(int(agent.p.settle_time / dt) + 1)
-
-    # 2. one loop on the leash, counter-clockwise from the nearest waypoint ahead
-    s.teacher.lead(loop_route.loop_from(s.truth.pose))
-    laps()
-    with Progress(1, "leash") as bar:
-        s.run(6000, until=lambda o: not s.teacher.leading)
-        bar.update()
-
-    # 3. reproduction: no drive is active, the only known way on is the taught loop
-    agent.drives.step(0.0)
-    s.phase, start_turns = Phase.REPRODUCTION, laps()
-    with Progress(1, "reproduction") as bar:
-        s.run(int(400 / dt), until=lap_until(start_turns + 1.0))
-        reproduced = loop.turns - start_turns
-        bar.update()
-
-    # 4. checkpoints: block the robot at each checkpoint for its wait, reward its drive after
-    s.phase = Phase.CHECKPOINTS
-    with Progress(3, "checkpoints") as bar:
-        for k, c in enumerate(checkpoints):
-            s.trial = k
-            s.run(int(300 / dt), until=lambda o, c=c: near(c, 12.0))
-            s.block(waits[k])
-            agent.reward(names[k])
-            s.run(int(10 / dt), until=lambda o: state_kind() not in (None, StateKind.STILL))
-            bar.update()
-
-    # 5. autonomous patrol (the learned delays are read before it: the patrol re-learns them)
+    course = _Course(s, loop_route, checkpoints, names)
+    reproduced = course.teach(waits)
+    # the learned delays are read before the patrol (which re-learns them)
     learned_delays = {}
     for n in names:
         delays = [agent.cells.learned_delay(t) for t in agent.drives.links(n)
                   if t in agent.cells.transitions]
         learned_delays[n] = float(np.median(delays)) if delays else None
-    for d in names:
-        agent.drives.set_level(d, 1.0)
-    s.phase, start_turns = Phase.PATROL, laps()
-    with Progress(loops, "patrol") as bar:
-        for k in range(loops):
-            s.trial = k
-            s.run(int(600 / dt), until=lap_until(start_turns + k + 1.0))
-            bar.update()
-    completed = loop.turns - start_turns
-
-    # 6. adaptation: a longer block at checkpoint 1, an early leash restart at checkpoint 2
-    adapt = {}
-    longer = waits[0] + 8.0
-    c1, c2 = checkpoints[0], checkpoints[1]
-    # the teacher holds the robot when it stops at checkpoint 1 by itself: its stillness
-    # lasts `longer` s instead of the learned wait (if it passes without stopping, it is held
-    # where the checkpoint was taught, as in teaching)
-    s.phase, s.trial = Phase.ADAPTATION, 0
-    s.run(int(400 / dt), until=lambda o: near(c1, 30.0) and (
-        state_kind() == StateKind.STILL or agent.mode in (Mode.APPROACH, Mode.WAIT)
-        or near(c1, 12.0)))
-    if agent.mode == Mode.APPROACH:  # about to stop: let it
-        s.run(int(20 / dt), until=lambda o: agent.mode != Mode.APPROACH)
-    s.block(longer, extra=10.0)
-    s.trial = 1
-    s.run(int(400 / dt), until=lambda o: state_kind() == StateKind.STILL and near(c2, 30.0))
-    shorter = waits[1] / 2
-    s.run(int(shorter / dt))
-    _, path = arena.shortest_path(s.truth.pose[:2], (c2[0] + 0.0, c2[1] + 30.0))
-    s.lead(path, limit=2000)
-    s.trial, start_turns = 2, laps()
-    i_adapt = len(log)
-    # one loop and a bit: it starts just past checkpoint 2, which it must meet again
-    s.run(int(800 / dt), until=lap_until(start_turns + 1.25))
-    i_adapt_end = len(log)
-
-    # 7. kidnap: the robot is put down on the path two waypoints before the checkpoint whose
-    # drive is lowest (it was served last), facing along the loop. Does it head on to a
-    # checkpoint with a high drive instead of stopping at the one it was put before?
-    levels = {n: agent.drives.level(n) for n in names}
-    low = min(names, key=levels.get)
-    wp = loop_route.waypoints
-    i_cp = loop_route.nearest(*checkpoints[names.index(low)])
-    (kx, ky), (nx, ny) = wp[(i_cp - 2) % len(wp)], wp[(i_cp - 1) % len(wp)]
-    s.phase, s.trial = Phase.KIDNAP, 0
-    s.put(kx, ky, math.atan2(ny - ky, nx - kx))
-    t_kid = s.t
-    obs = s.run(int(300 / dt), until=lambda o: agent.mode == Mode.WAIT)
-    kidnap_stop = None
-    if agent.mode == Mode.WAIT:
-        d = [math.dist(s.truth.pose[:2], c) for c in checkpoints]
-        served = agent.snapshot()["wait_drive"]
-        kidnap_stop = {"nearest_checkpoint": names[int(np.argmin(d))],
-                       "distance_cm": float(min(d)), "t_after_kidnap_s": float(obs.t - t_kid),
-                       "drive": names[served] if served >= 0 else None}
-        obs = s.run(int(5 / dt))
+    completed = course.patrol(loops)
+    longer, shorter, i_adapt, i_adapt_end = course.adapt(waits, arena)
+    levels, low, kidnap_stop = course.kidnap()
+    obs = s.obs
     wall = time.perf_counter() - t0
 
     arrays = s.save(out, Phase)
@@ -249,6 +155,7 @@ def run(args: argparse.Namespace) -> dict:
                      "mean_s": float(np.mean(rep)) if rep else None,
                      "sd_s": float(np.std(rep)) if rep else None,
                      "max_rel_error": float(max(err)) if err else None})
+    adapt = {}
     adapt_stops = [st for st in all_stops if i_adapt <= st["i0"] < i_adapt_end]
     for k, key, taught_s in ((0, "longer_block", longer), (1, "leash_restart", shorter)):
         after = [st["duration"] for st in adapt_stops if st["checkpoint"] == k]
@@ -288,6 +195,127 @@ def run(args: argparse.Namespace) -> dict:
         f"checkpoint passes; {waits}"))
     return metrics
 
+
+
+class _Course:
+    """The patrol's phases on one session: the robot, its teacher, the loop and checkpoints."""
+
+    def __init__(self, s: Session, route: Route, checkpoints: list, names: list[str]) -> None:
+        self.s, self.agent, self.dt = s, s.agent, s.world.dt
+        self.route, self.checkpoints, self.names = route, checkpoints, names
+        self.loop = LapCounter(route)  # laps by progress along the taught route
+
+    def laps(self) -> float:
+        return self.loop.update(*self.s.truth.pose[:2])
+
+    def lap_until(self, target: float):
+        return lambda o: self.laps() >= target
+
+    def state_kind(self) -> StateKind | None:
+        agent = self.agent
+        return agent.kind(agent.state) if agent.state is not None else None
+
+    def near(self, point, radius: float) -> bool:
+        return math.dist(self.s.truth.pose[:2], point) < radius
+
+    def teach(self, waits: list[float]) -> float:
+        """Settle, one loop on the leash, one loop reproduced alone, then the checkpoints
+        taught by blocks; returns the fraction of the loop reproduced."""
+        s, agent, dt = self.s, self.agent, self.dt
+        # let the place cells settle on the course before the leash
+        agent.lifted()
+        s.run(int(agent.p.settle_time / dt) + 1)
+        # one loop on the leash, counter-clockwise from the nearest waypoint ahead
+        s.teacher.lead(self.route.loop_from(s.truth.pose))
+        self.laps()
+        with Progress(1, "leash") as bar:
+            s.run(6000, until=lambda o: not s.teacher.leading)
+            bar.update()
+        # reproduction: no drive is active, the only known way on is the taught loop
+        agent.drives.step(0.0)
+        s.phase, start_turns = Phase.REPRODUCTION, self.laps()
+        with Progress(1, "reproduction") as bar:
+            s.run(int(400 / dt), until=self.lap_until(start_turns + 1.0))
+            reproduced = self.loop.turns - start_turns
+            bar.update()
+        # checkpoints: block the robot at each for its wait, reward its drive as it ends
+        s.phase = Phase.CHECKPOINTS
+        with Progress(3, "checkpoints") as bar:
+            for k, c in enumerate(self.checkpoints):
+                s.trial = k
+                s.run(int(300 / dt), until=lambda o, c=c: self.near(c, 12.0))
+                s.block(waits[k])
+                agent.reward(self.names[k])
+                s.run(int(10 / dt),
+                      until=lambda o: self.state_kind() not in (None, StateKind.STILL))
+                bar.update()
+        return reproduced
+
+    def patrol(self, loops: int) -> float:
+        """Every drive up, ``loops`` laps alone; returns the laps completed."""
+        s = self.s
+        for d in self.names:
+            self.agent.drives.set_level(d, 1.0)
+        s.phase, start_turns = Phase.PATROL, self.laps()
+        with Progress(loops, "patrol") as bar:
+            for k in range(loops):
+                s.trial = k
+                s.run(int(600 / self.dt), until=self.lap_until(start_turns + k + 1.0))
+                bar.update()
+        return self.loop.turns - start_turns
+
+    def adapt(self, waits: list[float], arena) -> tuple[float, float, int, int]:
+        """A longer block at checkpoint 1, an early leash restart at checkpoint 2, then a loop
+        and a bit alone; returns the two taught waits and the log rows of that loop."""
+        s, agent, dt = self.s, self.agent, self.dt
+        longer = waits[0] + 8.0
+        c1, c2 = self.checkpoints[0], self.checkpoints[1]
+        # the teacher holds the robot when it stops at checkpoint 1 by itself: its stillness
+        # lasts `longer` s instead of the learned wait (if it passes without stopping, it is
+        # held where the checkpoint was taught, as in teaching)
+        s.phase, s.trial = Phase.ADAPTATION, 0
+        s.run(int(400 / dt), until=lambda o: self.near(c1, 30.0) and (
+            self.state_kind() == StateKind.STILL or agent.mode in (Mode.APPROACH, Mode.WAIT)
+            or self.near(c1, 12.0)))
+        if agent.mode == Mode.APPROACH:  # about to stop: let it
+            s.run(int(20 / dt), until=lambda o: agent.mode != Mode.APPROACH)
+        s.block(longer, extra=10.0)
+        s.trial = 1
+        s.run(int(400 / dt),
+              until=lambda o: self.state_kind() == StateKind.STILL and self.near(c2, 30.0))
+        shorter = waits[1] / 2
+        s.run(int(shorter / dt))
+        _, path = arena.shortest_path(s.truth.pose[:2], (c2[0] + 0.0, c2[1] + 30.0))
+        s.lead(path, limit=2000)
+        s.trial, start_turns = 2, self.laps()
+        i_adapt = len(s.log)
+        # one loop and a bit: it starts just past checkpoint 2, which it must meet again
+        s.run(int(800 / dt), until=self.lap_until(start_turns + 1.25))
+        return longer, shorter, i_adapt, len(s.log)
+
+    def kidnap(self) -> tuple[dict[str, float], str, dict | None]:
+        """Put the robot down on the path two waypoints before the checkpoint whose drive is
+        lowest (it was served last), facing along the loop: does it head on to a checkpoint
+        with a high drive instead of stopping at the one it was put before?"""
+        s, agent, names = self.s, self.agent, self.names
+        levels = {n: agent.drives.level(n) for n in names}
+        low = min(names, key=levels.get)
+        wp = self.route.waypoints
+        i_cp = self.route.nearest(*self.checkpoints[names.index(low)])
+        (kx, ky), (nx, ny) = wp[(i_cp - 2) % len(wp)], wp[(i_cp - 1) % len(wp)]
+        s.phase, s.trial = Phase.KIDNAP, 0
+        s.put(kx, ky, math.atan2(ny - ky, nx - kx))
+        t_kid = s.t
+        obs = s.run(int(300 / self.dt), until=lambda o: agent.mode == Mode.WAIT)
+        stop = None
+        if agent.mode == Mode.WAIT:
+            d = [math.dist(s.truth.pose[:2], c) for c in self.checkpoints]
+            served = agent.snapshot()["wait_drive"]
+            stop = {"nearest_checkpoint": names[int(np.argmin(d))],
+                    "distance_cm": float(min(d)), "t_after_kidnap_s": float(obs.t - t_kid),
+                    "drive": names[served] if served >= 0 else None}
+            s.run(int(5 / self.dt))
+        return levels, low, stop
 
 def _longest_stop(stops: list[dict], k: int, *, phase: int) -> dict | None:
     """The longest stop at checkpoint ``k`` during ``phase`` (the taught wait)."""

@@ -16,6 +16,7 @@ import numpy as np
 from hippo._checks import check_array, check_int, check_positive
 from hippo.io import CorruptFileError, load_npz, save_npz
 from hippo.progress import Progress
+from hippo.seeds import Seeds
 from hippo.sim import arenas as arena_registry
 from hippo.sim.arena import Arena
 from hippo.sim.controllers import WallFollower, WallFollowerParams
@@ -156,7 +157,7 @@ def record(arena: Arena | str, ticks: int, *, seed: int = 0, rho: float = 0.008,
     world.reset(seed, pose=start_pose)
     if controller is None:
         controller = WallFollower(WallFollowerParams(rho=rho), sensors=world.sensors,
-                                  robot=world.robot, rng=np.random.default_rng([seed, 1]))
+                                  robot=world.robot, rng=Seeds(seed).generator("recording"))
     kid = dict(kidnaps)
     n = world.sensors.n
     S = np.empty((ticks, n))

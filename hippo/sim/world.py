@@ -100,6 +100,45 @@ class World:
             self._interventions.append(intervention)
         self.teacher = intervention
 
+    # -- snapshots (hippo.snapshot) ----------------------------------------------------------
+    def __snapshot_state__(self) -> dict[str, Any]:
+        """The world's whole state for :func:`hippo.snapshot.save_snapshot`: the robot body's
+        pose and velocities, the random stream, the clock, the event log and the last command.
+        Restoring it continues the simulation bit for bit. Obstacles and interventions (the
+        teacher) are not stored yet: a world holding them is refused."""
+        if self.obstacles or self._interventions:
+            raise TypeError("a World with obstacles or an attached teacher cannot be saved in a "
+                            "snapshot yet (remove them first)")
+        b = self.body
+        return {"arena": self.arena, "robot": self.robot, "sensors": self.sensors,
+                "dt": self.dt, "substeps": self.substeps, "seed": self.seed, "rng": self.rng,
+                "t": self.t, "tick": self.tick, "events": self.events,
+                "sound_pending": self._sound_pending, "last_command": self._last_command,
+                "v": self._v, "omega": self._omega, "truth": getattr(self, "truth", None),
+                "position": tuple(b.position), "angle": b.angle, "velocity": tuple(b.velocity),
+                "angular_velocity": b.angular_velocity}
+
+    @classmethod
+    def __snapshot_restore__(cls, st: dict[str, Any]) -> World:
+        world = cls(st["arena"], st["robot"], st["sensors"], st["dt"], st["substeps"],
+                    st["seed"])
+        x, y = st["position"]
+        world.reset(st["seed"], pose=(x, y, st["angle"]))
+        if not isinstance(st["rng"], np.random.Generator):
+            raise ValueError("rng must be a numpy Generator")
+        world.rng = st["rng"]
+        world.t, world.tick = float(st["t"]), int(st["tick"])
+        world.events = list(st["events"])
+        world._sound_pending = bool(st["sound_pending"])
+        world._last_command = tuple(st["last_command"])
+        world._v, world._omega = float(st["v"]), float(st["omega"])
+        if st["truth"] is not None:
+            world.truth = st["truth"]
+        b = world.body
+        b.position, b.angle = (x, y), st["angle"]
+        b.velocity, b.angular_velocity = tuple(st["velocity"]), st["angular_velocity"]
+        return world
+
     # -- construction -----------------------------------------------------------------------
     def reset(self, seed: int | None = None, pose: tuple[float, float, float] | None = None
               ) -> Observation:

@@ -20,6 +20,7 @@ from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
 from hippo.perception.states import StateLayerParams
 from hippo.places import GroundTruthPlaceCells, LearnedPlaceCells, PlaceSource
 from hippo.progress import Progress, working
+from hippo.seeds import Seeds
 from hippo.sim.arena import Arena
 from hippo.sim.controllers import WallFollower, WallFollowerParams
 from hippo.sim.world import World
@@ -67,8 +68,8 @@ def explore(world: World, ticks: int, rho: float, seed: int, log: Log | None = N
     input (without pauses, a wait left the learned places off for the next minute).
     Each tick is logged in ``log`` (no agent yet) under ``phase``."""
     ctrl = WallFollower(WallFollowerParams(rho=rho), sensors=world.sensors, robot=world.robot,
-                        rng=np.random.default_rng([seed, 3]))
-    rng = np.random.default_rng([seed, 4])
+                        rng=Seeds(seed).generator("exploration"))
+    rng = Seeds(seed).generator("pauses")
     obs = world.observe()
     tour = Tour()
     pause = 0

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from hippo._checks import check_finite
-from hippo.types import Mode
+from hippo.types import Mode, wrap_angle
 
 __all__ = ["AngleLaps", "LapCounter", "Route", "passes", "stops"]
 
@@ -123,7 +123,7 @@ class AngleLaps:
     def update(self, x: float, y: float) -> float:
         a = math.atan2(y - self.cy, x - self.cx)
         if self.angle is not None:
-            self.turns += ((a - self.angle + math.pi) % (2 * math.pi) - math.pi) / (2 * math.pi)
+            self.turns += wrap_angle(a - self.angle) / (2 * math.pi)
         self.angle = a
         return self.turns
 

@@ -160,7 +160,9 @@ class SpectralTiming:
 
     def _tuning(self, t: float | np.ndarray) -> np.ndarray:
         """:meth:`tuning` without the checks (``t`` is finite and >= 0: the inner loop's own)."""
-        return np.exp(-0.5 * ((np.asarray(t)[..., None] - self.mu) / self.sigma) ** 2)
+        if not isinstance(t, float):  # an array of times: one row each
+            t = np.asarray(t)[..., None]
+        return np.exp(-0.5 * ((t - self.mu) / self.sigma) ** 2)
 
     def step(self, winner: int, dt: float) -> BatteryState:
         """Advance by ``dt`` seconds with ``winner`` as the state; restart at a change of winner.

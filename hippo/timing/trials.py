@@ -26,11 +26,14 @@ Example::
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from hippo._checks import check_positive, check_range
 from hippo.timing.chain import TimingChain
+from hippo.timing.non_occurrence import NonOccurrence
+from hippo.timing.spectral import SpectralTiming
 
 __all__ = ["Reproduction", "TrialTrace", "reproduce", "run_trial"]
 
@@ -52,14 +55,17 @@ class TrialTrace:
     end: float | None
 
 
-def run_trial(chain: TimingChain, a: int, b: int, delay: float | None, *, dt: float = 0.2,
+def run_trial(chain: TimingChain | SpectralTiming, *args: Any, dt: float = 0.2,
               jitter: float = 0.1, rng: np.random.Generator | None = None,
               self_end: bool = False, t_max: float | None = None, after: float = 4.0,
-              other: int | None = None) -> TrialTrace:
-    """Enter ``a``, stay until ``b`` comes, then let ``b`` (and ``other``) last ``after`` s.
+              other: int | None = None, nonocc: NonOccurrence | None = None) -> TrialTrace:
+    """``run_trial(chain, a, b, delay, ...)``: enter ``a``, stay until ``b`` comes, then let
+    ``b`` (and ``other``) last ``after`` s.
 
     ``chain``'s non-occurrence neurons (if it has them) watch the predictions: their firings
-    for ``(a, b)`` are the trace's ``fired``.
+    for ``(a, b)`` are the trace's ``fired``. The modules may also be given one by one,
+    ``run_trial(timing, cells, a, b, delay, ..., nonocc=None)``: they are stepped as the chain
+    ``TimingChain.of(timing, cells, nonocc)``.
 
     delay: the teacher's delay (``b`` at the first tick with ``tau >= delay - tick/2``, i.e.
         the tick nearest the delay), or None for no teacher (extinction, or ``self_end``).
@@ -68,6 +74,13 @@ def run_trial(chain: TimingChain, a: int, b: int, delay: float | None, *, dt: fl
     t_max: give up waiting after this long (default ``2 * delay + 5`` or 60 s).
     other: a state entered after ``b`` (or, if ``b`` never came, after ``a``); default: none.
     """
+    if isinstance(chain, SpectralTiming):
+        chain, args = TimingChain.of(chain, args[0], nonocc), args[1:]
+    elif nonocc is not None:
+        raise ValueError("nonocc goes with run_trial(timing, cells, ...): a chain has its own")
+    if len(args) != 3:
+        raise TypeError("run_trial(chain, a, b, delay, ...) takes a, b and delay")
+    a, b, delay = args
     dt = check_positive("dt", dt)
     check_range("jitter", jitter, 0.0, 1.0, closed="left")
     if jitter > 0 and rng is None:

@@ -90,3 +90,41 @@ def test_bad_input():
         M.place_fields_locations(np.array([0, 1]), np.zeros((3, 1)), 3)
     with pytest.raises(ValueError, match="non-finite"):
         M.localized_units(np.array([[np.nan]]), np.array([0]), np.ones((1, 1), bool))
+
+
+def _slow_classes(T=3000, d=12, seed=0):
+    """A state X whose first feature is a slow square wave: the class is its sign."""
+    rng = np.random.default_rng(seed)
+    cls = ((np.arange(T) // 150) % 3).astype(int)          # three "rooms" visited in turn
+    X = rng.normal(size=(T, d))
+    X[:, 0] = cls == 0
+    X[:, 1] = cls == 1
+    return X, cls
+
+
+def test_ridge_ceiling_exact_when_classes_are_linear():
+    X, cls = _slow_classes()
+    c = M.ridge_ceiling(X, cls, 3, folds=5, gap=20)
+    assert c.balanced_accuracy == 1.0 and c.accuracy == 1.0
+    assert np.array_equal(c.predicted, cls) and c.alpha.shape == (5,)
+
+
+def test_ridge_ceiling_is_chance_without_information():
+    X, cls = _slow_classes()
+    X[:, :2] = np.random.default_rng(1).normal(size=(X.shape[0], 2))
+    c = M.ridge_ceiling(X, cls, 3, folds=5, gap=20)
+    assert abs(c.balanced_accuracy - 1 / 3) < 0.08
+
+
+def test_ridge_ceiling_mask_and_errors():
+    X, cls = _slow_classes()
+    mask = cls != 2
+    c = M.ridge_ceiling(X, np.where(mask, cls, -1), mask=mask, gap=20)
+    assert c.balanced_accuracy == 1.0 and np.all(c.predicted[~mask] == -1)
+    assert c.per_class_recall.shape == (2,)
+    with pytest.raises(ValueError, match="folds"):
+        M.ridge_ceiling(X, cls, folds=1)
+    with pytest.raises(ValueError, match="labels"):
+        M.ridge_ceiling(X, cls.astype(float))
+    with pytest.raises(ValueError, match="gap"):
+        M.ridge_ceiling(X[:100], cls[:100], 3, gap=20, folds=5)

@@ -251,3 +251,60 @@ def test_bind_context_names_the_next_stop():
     assert p1 != p0
     with pytest.raises(ValueError, match="context_time"):
         StateLayerParams(context_time=-1.0)
+
+
+def _one_hot_laps(layer, n, rng, routes, n_laps, ticks=10, dt=0.2):
+    """Drive ``layer`` with one-hot activities of ``n`` place cells along random routes;
+    return, per stay, (unit, winner at the end of the stay)."""
+    out = []
+    for _ in range(n_laps):
+        for unit in routes[int(rng.integers(len(routes)))]:
+            a = np.zeros(n)
+            a[unit] = 1.0
+            for _ in range(ticks):
+                ev = layer.step(a, moving=True, dt=dt)
+            out.append((unit, ev.winner))
+    return out
+
+
+def test_context_states_split_a_shared_stretch_by_the_way_in():
+    from hippo.perception.contexts import ContextParams
+
+    # units: 0 A, 1 B, 2-4 the shared stretch C1-C3, 5 D, 6 E, 7 H
+    layer = StateLayer(StateLayerParams(normalize="fixed", place_scale=0.5,
+                                        contexts=ContextParams()), n_place=8)
+    stays = _one_hot_laps(layer, 8, np.random.default_rng(0), [(0, 2, 3, 4, 5, 7),
+                                                            (1, 2, 3, 4, 6, 7)], 80)
+    late = stays[len(stays) // 2:]
+    at_c3 = {}
+    for k, (unit, winner) in enumerate(late[1:], 1):
+        if unit == 4:
+            at_c3.setdefault(late[k - 3][0], set()).add(winner)  # the route's entry
+    assert set(at_c3) == {0, 1}
+    (via_a,), (via_b,) = at_c3[0], at_c3[1]
+    assert via_a != via_b                                   # two states for one place cell
+    assert layer.key(via_a) == layer.key(via_b) == ("place", 4, None)
+    assert layer.clone(via_a) is not None and "|" in layer.describe(via_a)
+    assert layer.clone(layer.find("place", 4)) is None
+    # C1 and C2 need no split: one state each
+    assert len({w for u, w in late if u == 2}) == 1
+    # the first state of C3 (before the split) lives on as one of the two: what the map
+    # learned about it carries over
+    first_c3 = next(w for u, w in stays if u == 4)
+    assert first_c3 in (via_a, via_b)
+
+
+def test_context_states_merge_place_cells_that_take_turns():
+    from hippo.perception.contexts import ContextParams
+
+    # units: 0 H, 1 A, 2 and 3 take turns on one stretch, 4 D
+    layer = StateLayer(StateLayerParams(normalize="fixed", place_scale=0.5,
+                                        contexts=ContextParams()), n_place=5)
+    stays = _one_hot_laps(layer, 5, np.random.default_rng(1), [(0, 1, 2, 4), (0, 1, 3, 4)], 80)
+    late = stays[len(stays) // 2:]
+    assert len({w for u, w in late if u in (2, 3)}) == 1    # one state for both cells
+    assert layer.contexts.same(2) == layer.contexts.same(3)
+    # without contexts: two states
+    plain = StateLayer(StateLayerParams(normalize="fixed", place_scale=0.5), n_place=5)
+    stays = _one_hot_laps(plain, 5, np.random.default_rng(1), [(0, 1, 2, 4), (0, 1, 3, 4)], 20)
+    assert len({w for u, w in stays if u in (2, 3)}) == 2

@@ -1,0 +1,533 @@
+"""Context-split states: one learned place, several map states, by the way the robot came in.
+
+A learned place can stand for a stretch of track that two routes share (aliasing): from the
+place alone, the next place is uncertain; from the place *and* the way the robot came in, it
+is not. Clone-structured cognitive graphs (George et al., Nat. Commun. 2021) learn such
+"clones" of an observation offline with EM; here they are recruited online, from the event
+sequence the state layer already produces, by the suffix-tree rule of McCallum's Utile Suffix
+Memory (1995): a state is split by one more step of history only when that history makes a
+statistically significant difference to what comes next.
+
+**Instances.** Every stay in a place ``p`` that ends (the robot enters the next place) is an
+instance ``(h, n, d)``: ``h = (q1, q2, …, qK)`` the places entered before ``p``, most recent
+first (``K = max_depth``); ``n`` the place entered next; ``d`` how long the robot stayed in
+``p`` (the elapsed time the timing battery reads at the event, seconds).
+
+**Context tree.** Each place has a tree whose leaves are its context states; the root (no
+history) is the unsplit place. An internal node routes an instance by one step of its history,
+``q_j``; several values of ``q_j`` may share a child (they were found alike: merged). A leaf
+is split on the most recent step ``q_j`` not yet used on its path (``j ≤ max_depth``) whose
+values tell its instances apart — USM's fringe, so that a stretch shared by two routes (where
+``q1`` is the same place on both) splits on the place before it. Grouped by ``q_j`` (each
+value with at least ``min_count`` instances), the instances must differ
+
+- in their successors — G-test of independence on the groups × successors table::
+
+      G = 2 Σ O_gn ln(O_gn / E_gn),   E_gn = O_g· O_·n / O_··,   split if P(χ²_df ≥ G) < alpha,
+      df = (groups − 1)(successors − 1);
+
+- or in their dwell time — Weber's law: the mean log-dwells differ by more than
+  ``ln(1 + dwell_tolerance)`` and by more than ``z`` standard errors (log-dwell sd floored
+  at ``weber``, the timing batteries' own precision).
+
+Values are grouped greedily (most frequent first, each joining the first group it is not
+different from); every group becomes a leaf with a new context id. Values seen less than
+``min_count`` times, and values never seen, follow the largest group.
+
+**Merging.** When the children of a node (all leaves) stop being different — the same tests
+with the laxer ``alpha_merge`` — they are merged back into one leaf, which keeps the id of
+the oldest child; :meth:`ContextStates.resolve` maps a retired id to its survivor.
+
+**Merging places.** Learned place cells also do the opposite of aliasing: two prototypes
+can share one stretch of track and win on alternate laps, so the robot sees ``A → B → D`` on
+one lap and ``A → C → D`` on the next. Two places are merged into one state (the CSCG measure
+of a map rewards it: what follows ``A`` becomes certain) when each has a usual way in and out
+(the most frequent predecessor and successor hold at least half of its stays), these are the
+same for both, and no step of their past or future up to ``merge_horizon`` events away — nor
+the stays in the places after them — differs (the same tests at ``alpha_merge``; until every
+step has ``min_count`` stays on both sides, they count as different). The horizon is longer
+than ``max_depth``, so a place that a split depends on is not merged away. A merged place
+starts again unsplit; :meth:`ContextStates.same` names the place it was merged into.
+
+A learned field can also win only on some passes, for a moment, at the start of the next
+one's stretch: the robot goes ``P → X → Y`` on some passes and ``P → Y`` on others. Such a
+bypassed place ``X`` (its usual way in is ``P`` and out is ``Y``, and ``P`` is also ``Y``'s
+usual way in, ``min_count`` times without ``X``) is merged into ``Y``: one state that
+follows ``P`` on every pass.
+
+**Memory.** Each place keeps only its last ``memory`` instances (a ring buffer), so a long
+deployment holds a bounded amount of data; trees are bounded by ``max_depth`` and the number
+of places.
+
+Typical use (at each change of the place winner)::
+
+    contexts = ContextStates(ContextParams())
+    cid = contexts.observe(place, t)      # the context state the robot is in now
+    contexts.predict(cid)                 # its next-place distribution
+"""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+from collections.abc import Callable, Hashable, Iterable
+from dataclasses import dataclass, field
+from typing import NamedTuple
+
+import numpy as np
+from scipy.stats import chi2, norm
+
+from hippo._checks import check_fields, check_positive, check_range
+
+__all__ = ["ContextKey", "ContextParams", "ContextStates", "g_test"]
+
+
+@dataclass(frozen=True)
+class ContextParams:
+    """Parameters of :class:`ContextStates`.
+
+    max_depth: longest history a context may use (places before the current one; default 3).
+    min_count: instances a predecessor value needs before it can found a group (default 6).
+    alpha: significance of a split (G-test of the successors, or the dwell test; default 1e-3).
+    alpha_merge: children merge back when no test between them reaches this (default 0.05;
+        laxer than ``alpha``, so a state is not split and merged back on alternate events).
+    dwell_tolerance: dwell times differ only beyond this relative difference (default 0.5).
+    weber: floor on the sd of log-dwell times (default 0.1: the batteries' Weber fraction).
+    memory: instances kept per place (default 256).
+    merge_places: merge two places that the robot enters from the same place and leaves to the
+        same place, alike in their distributions of both and in dwell (default True).
+    merge_horizon: places merge only if no step of their past or future up to this many
+        events apart tells them apart (default 8; longer than ``max_depth``, so that a place
+        a split depends on is not merged away).
+    merge_bypasses: merge a place that the robot passes through on the way from ``P`` to ``Y``
+        on some passes and skips on others (``P → Y`` directly) into ``Y`` (default True).
+    """
+
+    max_depth: int = 3
+    min_count: int = 6
+    alpha: float = 1e-3
+    alpha_merge: float = 0.05
+    dwell_tolerance: float = 0.5
+    weber: float = 0.1
+    memory: int = 256
+    merge_places: bool = True
+    merge_horizon: int = 8
+    merge_bypasses: bool = True
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+        if int(self.max_depth) != self.max_depth or self.max_depth < 0:
+            raise ValueError(f"max_depth must be an integer >= 0, got {self.max_depth!r}")
+        if int(self.min_count) != self.min_count or self.min_count < 2:
+            raise ValueError(f"min_count must be an integer >= 2, got {self.min_count!r}")
+        check_range("alpha", self.alpha, 0.0, 1.0, closed="neither")
+        check_range("alpha_merge", self.alpha_merge, 0.0, 1.0, closed="neither")
+        if self.alpha_merge < self.alpha:
+            raise ValueError(f"alpha_merge ({self.alpha_merge}) must be >= alpha ({self.alpha})")
+        check_positive("dwell_tolerance", self.dwell_tolerance, allow_zero=True)
+        check_positive("weber", self.weber)
+        if int(self.merge_horizon) != self.merge_horizon or self.merge_horizon < 1:
+            raise ValueError(f"merge_horizon must be an integer >= 1, got {self.merge_horizon!r}")
+        if int(self.memory) != self.memory or self.memory < 2 * self.min_count:
+            raise ValueError(f"memory must be an integer >= 2 * min_count "
+                             f"({2 * self.min_count}), got {self.memory!r}")
+
+
+class ContextKey(NamedTuple):
+    """What a context state stands for: ``place`` entered after a history matching ``history``
+    (pairs ``(j, places)``: the place ``j`` steps back, counting from 1, is one of ``places``;
+    empty: any history)."""
+
+    place: Hashable
+    history: tuple[tuple[int, frozenset], ...]
+
+
+def g_test(table: np.ndarray) -> float:
+    """p-value of the G-test of independence on a contingency table (rows: groups).
+
+    ``G = 2 Σ O ln(O / E)`` with ``E`` the product of the margins over the total; ``G`` is
+    χ²-distributed with ``(rows − 1)(columns − 1)`` degrees of freedom (empty rows and
+    columns are dropped). Returns 1.0 when there is nothing to test."""
+    o = np.asarray(table, dtype=float)
+    if o.ndim != 2 or np.any(o < 0) or not np.all(np.isfinite(o)):
+        raise ValueError(f"table must be a 2-D array of counts >= 0, got {table!r}")
+    o = o[o.sum(axis=1) > 0][:, o.sum(axis=0) > 0]
+    if o.shape[0] < 2 or o.shape[1] < 2:
+        return 1.0
+    e = o.sum(axis=1, keepdims=True) * o.sum(axis=0, keepdims=True) / o.sum()
+    nz = o > 0
+    g = 2.0 * float(np.sum(o[nz] * np.log(o[nz] / e[nz])))
+    df = (o.shape[0] - 1) * (o.shape[1] - 1)
+    return float(chi2.sf(g, df))
+
+
+class _Inst(NamedTuple):
+    history: tuple
+    next: Hashable
+    dwell: float
+    future: list   # next, and the places after it as they come (up to merge_horizon)
+    future_dwell: list  # the stays in those places, as they end
+
+
+@dataclass(eq=False)
+class _Node:
+    start: int                                      # first history index it may split on
+    pos: int = -1                                   # internal: history index it routes on
+    cid: int | None = None                          # leaf: its context id
+    route: dict = field(default_factory=dict)       # internal: predecessor value -> child
+    default: _Node | None = None                    # internal: child for rare/unseen values
+
+    @property
+    def leaf(self) -> bool:
+        return self.cid is not None
+
+    def child(self, value: Hashable) -> _Node:
+        return self.route.get(value, self.default)  # type: ignore[return-value]
+
+    def step(self, history: tuple, same: Callable[[Hashable], Hashable]) -> _Node:
+        """The child an instance with ``history`` goes to (places read through ``same``)."""
+        return self.child(same(history[self.pos])) if self.pos < len(history) \
+            else self.default  # type: ignore[return-value]
+
+    def children(self) -> list[_Node]:
+        out: list[_Node] = []
+        for c in [*self.route.values(), self.default]:
+            if c is not None and all(c is not o for o in out):
+                out.append(c)
+        return out
+
+
+class ContextStates:
+    """Online context splitting of learned places (see the module docstring).
+
+    :meth:`observe` takes the place the robot just entered and the time; it returns the id of
+    the context state for that entry (ids are integers from 0, never reused). ``n_splits`` and
+    ``n_merges`` count the tree's changes.
+    """
+
+    def __init__(self, params: ContextParams | None = None) -> None:
+        self.params = params or ContextParams()
+        if not isinstance(self.params, ContextParams):
+            raise TypeError(f"params must be ContextParams, got {self.params!r}")
+        self._z = float(norm.isf(self.params.alpha / 2))
+        self._z_merge = float(norm.isf(self.params.alpha_merge / 2))
+        self._trees: dict[Hashable, _Node] = {}
+        self._data: dict[Hashable, deque[_Inst]] = {}
+        self._keys: list[ContextKey] = []
+        self._alias: dict[int, int] = {}
+        self._same: dict[Hashable, Hashable] = {}
+        self.n_splits = 0
+        self.n_merges = 0
+        self.n_place_merges = 0
+        self.reset()
+
+    # ------------------------------------------------------------------ sequence
+    def reset(self) -> None:
+        """Forget the recent history (after a kidnap): the tree and its data are kept."""
+        p = self.params
+        self._history: deque[Hashable] = deque(maxlen=max(p.max_depth, p.merge_horizon) + 1)
+        self._pending: deque[_Inst] = deque(maxlen=p.merge_horizon)
+        self._entered: float | None = None
+        self.current: int | None = None
+
+    def observe(self, place: Hashable, t: float) -> int:
+        """The robot entered ``place`` at time ``t`` (s): learn from the stay that ended, and
+        return the context id of this entry."""
+        if not isinstance(place, Hashable) or place is None:
+            raise ValueError(f"place must be a hashable, non-None label, got {place!r}")
+        t = float(t)
+        if not math.isfinite(t):
+            raise ValueError(f"t must be a finite time in seconds, got {t!r}")
+        place = self.same(place)
+        if self._history and self._entered is not None:
+            if t < self._entered:
+                raise ValueError(f"time went backwards: entered at {self._entered}, now {t}")
+            prev = self.same(self._history[-1])
+            if place == prev:
+                return self.current  # type: ignore[return-value]
+            hist = tuple(reversed(list(self._history)[:-1]))  # before prev, most recent first
+            for older in self._pending:
+                if len(older.future) < self.params.merge_horizon:
+                    older.future.append(place)
+                if len(older.future_dwell) < len(older.future) - 1:
+                    older.future_dwell.append(t - self._entered)  # the stay in prev ended
+            inst = _Inst(hist, place, t - self._entered, [place], [])
+            self._pending.append(inst)
+            self._learn(prev, inst)
+            self._merge_places(prev)
+            place = self.same(place)
+        self._tree(place)
+        self._history.append(place)
+        self._entered = t
+        self.current = self.context_of(place, tuple(reversed(list(self._history)[:-1])))
+        return self.current
+
+    def same(self, place: Hashable) -> Hashable:
+        """The place ``place`` was merged into (itself when it never was)."""
+        while place in self._same:
+            place = self._same[place]
+        return place
+
+    def members(self, place: Hashable) -> list[Hashable]:
+        """Every place merged into the same state as ``place`` (itself included)."""
+        rep = self.same(place)
+        return [q for q in [*self._trees, *self._same] if self.same(q) == rep]
+
+    def context_of(self, place: Hashable, history: Iterable[Hashable] = ()) -> int:
+        """The context id of ``place`` entered after ``history`` (most recent first)."""
+        h = tuple(history)
+        node = self._tree(self.same(place))
+        while not node.leaf:
+            node = node.step(h, self.same)
+        return node.cid  # type: ignore[return-value]
+
+    # ------------------------------------------------------------------ introspection
+    @property
+    def n_states(self) -> int:
+        """Context states alive now (leaves of every tree)."""
+        return sum(len(self._leaves(r)) for r in self._trees.values())
+
+    def states_of(self, place: Hashable) -> list[int]:
+        """The live context ids of ``place`` (one when it is not split)."""
+        return [n.cid for n in self._leaves(self._tree(place))]  # type: ignore[misc]
+
+    def key(self, cid: int) -> ContextKey:
+        """What context ``cid`` stands for (a retired id: its survivor's key)."""
+        return self._keys[self.resolve(cid)]
+
+    def resolve(self, cid: int) -> int:
+        """A retired (merged) id's surviving id; a live id is returned as is."""
+        if isinstance(cid, bool) or not isinstance(cid, (int, np.integer)) or not \
+                0 <= cid < len(self._keys):
+            raise ValueError(f"unknown context id {cid!r} ({len(self._keys)} ids issued)")
+        cid = int(cid)
+        while cid in self._alias:
+            cid = self._alias[cid]
+        return cid
+
+    def predict(self, cid: int) -> dict[Hashable, float]:
+        """Next-place distribution of context ``cid`` (frequencies of its kept instances; merged
+        places under the name of their state, :meth:`same`)."""
+        cid = self.resolve(cid)
+        place = self._keys[cid].place
+        nxt = [self.same(i.next) for i in self._data.get(place, ())
+               if self._leaf_of(place, i) == cid]
+        if not nxt:
+            return {}
+        vals, counts = np.unique(np.array(nxt, dtype=object), return_counts=True)
+        return {v: float(c) / len(nxt) for v, c in zip(vals.tolist(), counts, strict=True)}
+
+    def describe(self, cid: int) -> str:
+        """``C`` for an unsplit place, ``C|B`` or ``C|B,{A1 A2}`` for a context."""
+        k = self.key(cid)
+        if not k.history:
+            return str(k.place)
+        parts = [f"{j + 1}:" + (str(next(iter(s))) if len(s) == 1 else "{" + " ".join(
+            map(str, sorted(s, key=str))) + "}") for j, s in k.history]
+        return f"{k.place}|" + ",".join(parts)
+
+    # ------------------------------------------------------------------ learning
+    def _tree(self, place: Hashable) -> _Node:
+        root = self._trees.get(place)
+        if root is None:
+            root = self._trees[place] = _Node(0, cid=self._new_id(place, ()))
+            self._data[place] = deque(maxlen=self.params.memory)
+        return root
+
+    def _new_id(self, place: Hashable, history: tuple[frozenset, ...]) -> int:
+        self._keys.append(ContextKey(place, history))
+        return len(self._keys) - 1
+
+    def _leaves(self, node: _Node) -> list[_Node]:
+        return [node] if node.leaf else [x for c in node.children() for x in self._leaves(c)]
+
+    def _leaf_of(self, place: Hashable, inst: _Inst) -> int:
+        return self.context_of(place, inst.history)
+
+    def _learn(self, place: Hashable, inst: _Inst) -> None:
+        data = self._data[place]
+        data.append(inst)
+        # walk the instance's path; merge where children became alike, split the leaf
+        path, node = [], self._trees[place]
+        while not node.leaf:
+            path.append(node)
+            node = node.step(inst.history, self.same)
+        for parent in reversed(path):
+            if all(c.leaf for c in parent.children()) and self._merge(place, parent):
+                return
+        self._split(place, node)
+
+    def _members(self, place: Hashable, node: _Node) -> list[_Inst]:
+        """Kept instances of ``place`` routed through ``node``."""
+        out = []
+        for i in self._data[place]:
+            n = self._trees[place]
+            while n is not node and not n.leaf:
+                n = n.step(i.history, self.same)
+            if n is node:
+                out.append(i)
+        return out
+
+    def _different(self, a: list[_Inst], b: list[_Inst], *, merge: bool = False) -> bool:
+        """Do two sets of instances differ in successors or in dwell (see the docstring)?"""
+        p = self.params
+        alpha, z = (p.alpha_merge, self._z_merge) if merge else (p.alpha, self._z)
+        if self._differ_in(a, b, lambda i: self.same(i.next), alpha):
+            return True
+        return self._differ_dwell([i.dwell for i in a], [i.dwell for i in b], z)
+
+    def _differ_dwell(self, a: list[float], b: list[float], z: float) -> bool:
+        """Weber-tolerant test of the mean log-dwell (see the module docstring)."""
+        p = self.params
+        la = np.log(np.maximum(a, 1e-9))
+        lb = np.log(np.maximum(b, 1e-9))
+        diff = abs(float(la.mean() - lb.mean()))
+        se = math.sqrt(max(float(la.var()), p.weber**2) / len(la)
+                       + max(float(lb.var()), p.weber**2) / len(lb))
+        return diff > math.log1p(p.dwell_tolerance) and diff > z * se
+
+    def _differ_in(self, a: list[_Inst], b: list[_Inst], what: Callable[[_Inst], Hashable],
+                   alpha: float) -> bool:
+        """G-test: do ``a`` and ``b`` differ in the distribution of ``what(instance)``?"""
+        va, vb = [what(i) for i in a], [what(i) for i in b]
+        vals = sorted(set(va) | set(vb), key=repr)
+        table = np.array([[v.count(x) for x in vals] for v in (va, vb)])
+        return g_test(table) < alpha
+
+    def _groups(self, insts: list[_Inst], pos: int) -> list[tuple[set, list[_Inst]]]:
+        """Values of ``q_{pos+1}`` grouped by alike futures (most frequent first)."""
+        by: dict[Hashable, list[_Inst]] = {}
+        for i in insts:
+            if pos < len(i.history):
+                by.setdefault(self.same(i.history[pos]), []).append(i)
+        vals = sorted((v for v in by if len(by[v]) >= self.params.min_count),
+                      key=lambda v: (-len(by[v]), repr(v)))
+        groups: list[tuple[set, list[_Inst]]] = []
+        for v in vals:
+            for members, pooled in groups:
+                if not self._different(by[v], pooled):
+                    members.add(v)
+                    pooled.extend(by[v])
+                    break
+            else:
+                groups.append(({v}, list(by[v])))
+        return groups
+
+    def _split(self, place: Hashable, leaf: _Node) -> None:
+        members = self._members(place, leaf)
+        for pos in range(leaf.start, self.params.max_depth):
+            groups = self._groups(members, pos)
+            if len(groups) >= 2:
+                break
+        else:
+            return
+        hist = self._keys[leaf.cid].history  # type: ignore[index]
+        children = [_Node(pos + 1, cid=self._new_id(place, (*hist, (pos, frozenset(vals)))))
+                    for vals, _ in groups]
+        self._alias[leaf.cid] = children[0].cid  # type: ignore[index]
+        leaf.cid, leaf.default, leaf.pos = None, children[0], pos
+        leaf.route = {v: c for (vals, _), c in zip(groups, children, strict=True) for v in vals}
+        self.n_splits += 1
+
+    def _merge(self, place: Hashable, node: _Node) -> bool:
+        """Merge ``node``'s leaf children back into one leaf if none differs any more."""
+        kids = node.children()
+        sets = [self._members(place, c) for c in kids]
+        if any(len(s) < self.params.min_count for s in sets):
+            return False
+        for i in range(len(kids)):
+            for j in range(i + 1, len(kids)):
+                if self._different(sets[i], sets[j], merge=True):
+                    return False
+        keep = min(c.cid for c in kids)  # type: ignore[type-var]
+        for c in kids:
+            if c.cid != keep:
+                self._alias[c.cid] = keep  # type: ignore[index]
+        self._keys[keep] = ContextKey(place, tuple(
+            (j, s) for j, s in self._keys[keep].history if j < node.pos))
+        node.cid, node.route, node.default, node.pos = keep, {}, None, -1
+        self.n_merges += 1
+        return True
+
+    # ------------------------------------------------------------------ merging places
+    def _merge_places(self, place: Hashable) -> None:
+        """Merge ``place`` into another place entered from and left to the same places."""
+        p = self.params
+        if not p.merge_places:
+            return
+
+        def pred(i: _Inst) -> Hashable:
+            return self.same(i.history[0])
+
+        def succ(i: _Inst) -> Hashable:
+            return self.same(i.next)
+
+        def top(insts: list[_Inst], f: Callable[[_Inst], Hashable]) -> Hashable:
+            counts: dict[Hashable, int] = {}
+            for i in insts:
+                counts[f(i)] = counts.get(f(i), 0) + 1
+            return max(counts, key=lambda v: (counts[v], repr(v)))
+
+        mine = [i for i in self._data[place] if i.history]
+        if len(mine) < p.min_count:
+            return
+        tp, ts = top(mine, pred), top(mine, succ)
+        if min(sum(pred(i) == tp for i in mine), sum(succ(i) == ts for i in mine)) < \
+                0.5 * len(mine):
+            return  # no usual way in and out: nothing says another place is the same
+        if p.merge_bypasses and ts in self._data and ts != tp:
+            # a bypass: the robot goes tp -> place -> ts on some passes and tp -> ts on others
+            direct = [i for i in self._data[ts] if i.history and pred(i) != place]
+            if (sum(pred(i) == tp for i in direct) >= p.min_count
+                    and top(direct, pred) == tp):
+                self._join(ts, place)
+                return
+        for other in list(self._trees):
+            if other == place or other in (tp, ts):
+                continue
+            theirs = [i for i in self._data[other] if i.history]
+            if (len(theirs) < p.min_count or top(theirs, pred) != tp
+                    or top(theirs, succ) != ts
+                    or self._differ_dwell([i.dwell for i in mine], [i.dwell for i in theirs],
+                                          self._z_merge)
+                    or self._differ_around(mine, theirs)):
+                continue
+            keep, gone = (other, place) if len(self._data[other]) >= len(self._data[place]) \
+                else (place, other)
+            self._join(keep, gone)
+            return
+
+    def _differ_around(self, a: list[_Inst], b: list[_Inst]) -> bool:
+        """Do ``a`` and ``b`` differ in any step of their past or future (``merge_horizon``)?
+        Until each step has ``min_count`` instances on both sides, they count as different."""
+        p = self.params
+        for k in range(p.merge_horizon):
+            for seq in ("history", "future"):
+                aa = [i for i in a if len(getattr(i, seq)) > k]
+                bb = [i for i in b if len(getattr(i, seq)) > k]
+                if min(len(aa), len(bb)) < p.min_count:
+                    return True  # not seen enough yet to call them the same
+                if self._differ_in(aa, bb, lambda i, s=seq, k=k: self.same(getattr(i, s)[k]),
+                                   p.alpha_merge):
+                    return True
+            da = [i.future_dwell[k] for i in a if len(i.future_dwell) > k]
+            db = [i.future_dwell[k] for i in b if len(i.future_dwell) > k]
+            if min(len(da), len(db)) >= p.min_count and self._differ_dwell(da, db, self._z_merge):
+                return True
+        return False
+
+    def _join(self, keep: Hashable, gone: Hashable) -> None:
+        """``gone`` becomes the same state as ``keep``: one unsplit place again, whose id is the
+        oldest of their contexts (the others are retired into it)."""
+        self._same[gone] = keep
+        data = self._data[keep]
+        for i in self._data.pop(gone):
+            data.append(i)
+        leaves = self._leaves(self._trees[keep]) + self._leaves(self._trees.pop(gone))
+        root = min(n.cid for n in leaves)  # type: ignore[type-var]
+        for n in leaves:
+            if n.cid != root:
+                self._alias[n.cid] = root  # type: ignore[index]
+        self._trees[keep] = _Node(0, cid=root)
+        self._keys[root] = ContextKey(keep, ())
+        self.n_place_merges += 1

@@ -1,0 +1,267 @@
+"""Room cells in generated flats: one cell per room, learned without labels, in worlds nobody drew.
+
+For each seed, :func:`~hippo.sim.flats.random_flat` builds a flat of ``--n-rooms`` rooms; the
+e-puck wall-follows (ρ = 0.008) for ``--ticks-per-room`` × n ticks; an RC-SFA-ICA model with
+SMC09's reservoir (600 neurons, leaks ``--leak``) and **2 × n SFA and ICA units** (SMC09's 4
+for two rooms, growing with the world) is fitted on the first 3/4 without labels. Analysis
+(labels used only here, chosen on the training part, scored on the test part):
+
+* ``room_cell_balanced_accuracy`` — for each room, the unit, threshold and sign that best
+  detect "in this room" (vs the other rooms; corridors left out), scored on the test part;
+* ``decoder_balanced_accuracy`` — a decoder over rooms reading all the units: the room whose
+  mean unit vector on the training part (its centroid) is nearest (mean recall over rooms;
+  chance 1/n). Only the n centroids are learned from labels; units that code the position
+  along the flat, not one room each, are read too;
+* ``ceiling`` — what a supervised ridge read-out of the same reservoir state reaches (blocked
+  cross-validation in time over the whole recording; per room one-vs-rest, and over rooms);
+* ``kidnap_recovery_ticks`` — a second, unseen test run continues from the end of training;
+  every 500 ticks the robot is put at a random free pose of a random room; ticks until the
+  decoder names the right room and keeps it ``--hold`` ticks (moves that stay in the same room
+  are left out).
+
+Each seed is one flat, one exploration run and one reservoir; ``--arenas N`` runs N flats
+(seeds ``--seed`` … or the first N of ``--seeds``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+from typing import Any
+
+import numpy as np
+
+from hippo.io import save_figure
+from hippo.perception import RCSFAICA, ICAConvergenceWarning
+from hippo.perception import metrics as M
+from hippo.progress import Progress
+from hippo.scenarios._common import (
+    add_cache_argument,
+    add_seeds_argument,
+    cached_recording,
+    mean_sd,
+    prepare_out,
+    seed_list,
+    sfa_cutoff,
+    write_metrics,
+)
+from hippo.scenarios.two_rooms import parse_leak
+from hippo.sim.flats import random_flat, room_names
+from hippo.sim.record import Recording, record
+
+KIDNAP_EVERY = 500   # test ticks between kidnaps (the first at tick 150)
+TARGETS = {"gap_to_ceiling": 0.05, "decoder_balanced_accuracy": 0.85}
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--n-rooms", type=int, default=3, help="rooms per flat (>= 2)")
+    parser.add_argument("--arenas", type=int, default=None,
+                        help="number of generated flats (one per seed)")
+    add_seeds_argument(parser, "flats to generate (one flat, run and reservoir per seed)")
+    add_cache_argument(parser)
+    parser.add_argument("--ticks-per-room", type=int, default=8000,
+                        help="recorded ticks per room of the flat")
+    parser.add_argument("--rho", type=float, default=0.008, help="wall-side switch probability")
+    parser.add_argument("--neurons", type=int, default=600, help="reservoir size")
+    parser.add_argument("--units", type=int, default=0,
+                        help="SFA and ICA units (default 0: twice the number of rooms)")
+    parser.add_argument("--leak", type=parse_leak, default=(0.05, 0.15),
+                        help="leak rates, one per half (default: SMC09's 0.05,0.15)")
+    parser.add_argument("--ica-restarts", type=int, default=10)
+    parser.add_argument("--sfa-cutoff", default="1e-8",
+                        help="relative whitening cutoff, or 'auto' (default: %(default)s)")
+    parser.add_argument("--hold", type=int, default=5,
+                        help="recovered = right for this many consecutive ticks")
+    parser.add_argument("--ceiling", type=int, default=1, choices=[0, 1],
+                        help="also report the supervised ceiling")
+    parser.add_argument("--figures", type=int, default=1, choices=[0, 1], help="write PNGs")
+
+
+def _seeds(args: argparse.Namespace) -> list[int]:
+    seeds = seed_list(args)
+    if args.arenas is None:
+        return seeds
+    if args.arenas < 1:
+        raise SystemExit(f"--arenas must be >= 1, got {args.arenas}")
+    if isinstance(args.seeds, int):
+        return [args.seed + i for i in range(args.arenas)]
+    if len(seeds) < args.arenas:
+        raise SystemExit(f"--arenas {args.arenas} needs as many seeds, --seeds gives "
+                         f"{len(seeds)}")
+    return seeds[: args.arenas]
+
+
+def room_labels(rec: Recording, rooms: list[str]) -> np.ndarray:
+    """Room index per tick (-1 in corridors)."""
+    names = np.array([*rec.region_names, "none"])[rec.region]
+    lab = np.full(len(rec), -1)
+    for i, r in enumerate(rooms):
+        lab[names == r] = i
+    return lab
+
+
+def _kidnapped_run(arena, rec: Recording, n_train: int, test_len: int, seed: int, rho: float,
+                   rooms: list[str], cache) -> tuple[Recording, list[int]]:
+    """An unseen test run from the pose at the end of training, kidnapped every 500 ticks to a
+    random free pose of a random room."""
+    rng = np.random.default_rng([seed, 23])
+    kid = []
+    for k in range(150, test_len, KIDNAP_EVERY):
+        target = rooms[int(rng.integers(len(rooms)))]
+        reg = next(r for r in arena.regions if r.name == target)
+        x0, y0, x1, y1 = reg.rects[0]
+        kid.append((k, arena.sample_free_pose(rng, margin=4.0, rect=(x0 + 5, y0 + 5, x1 - 5,
+                                                                      y1 - 5))))
+    pose = (float(rec.x[n_train - 1]), float(rec.y[n_train - 1]),
+            float(rec.heading[n_train - 1]))
+    tag = f"{arena.name}_kid_t{test_len}_rho{rho:g}"
+    run = cached_recording(cache, tag, lambda: record(
+        arena, test_len, seed=seed + 7919, rho=rho, sensors="ir8", kidnaps=kid,
+        start_pose=pose, progress=False))
+    return run, [k for k, _ in kid]
+
+
+def _nearest_centroid(Y: np.ndarray, centroids: np.ndarray) -> np.ndarray:
+    d = ((Y[:, None, :] - centroids[None, :, :]) ** 2).sum(axis=2)
+    return np.argmin(d, axis=1)
+
+
+def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any]:
+    n = args.n_rooms
+    arena = random_flat(n, seed)
+    rooms = room_names(arena)
+    ticks = args.ticks_per_room * n
+    if quick:
+        ticks = min(ticks, 3000 * n)
+    neurons = min(args.neurons, 150) if quick else args.neurons
+    units = args.units or 2 * n
+    rec = cached_recording(args.cache, f"{arena.name}_t{ticks}_rho{args.rho:g}",
+                           lambda: record(arena, ticks, seed=seed, rho=args.rho, sensors="ir8",
+                                          progress=False))
+    n_train = ticks * 3 // 4
+    lab = room_labels(rec, rooms)
+    in_room = lab >= 0
+    model = RCSFAICA.smc09(n_reservoir=neurons, leak=tuple(args.leak), seed=seed, n_sfa=units,
+                           n_ica=units, ica_restarts=min(args.ica_restarts, 3) if quick
+                           else args.ica_restarts, sfa_cutoff=sfa_cutoff(args.sfa_cutoff))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ICAConvergenceWarning)
+        model.fit(rec.sensors[:n_train])
+    Y = model.transform(rec.sensors)
+    tr, te = slice(0, n_train), slice(n_train, ticks)
+    cells, bacc = [], []
+    for r in range(n):
+        c = M.fit_binary_cell(Y[tr], lab[tr] == r, in_room[tr])
+        cells.append(c)
+        m = in_room[te]
+        bacc.append(M.balanced_accuracy(c.predict(Y[te])[m], (lab[te] == r)[m]))
+    cent = np.stack([Y[tr][lab[tr] == r].mean(axis=0) if np.any(lab[tr] == r)
+                     else np.full(units, np.inf) for r in range(n)])
+    dec = _nearest_centroid(Y, cent)
+    m = in_room[te]
+    recall = [float(np.mean(dec[te][m][lab[te][m] == r] == r)) if np.any(lab[te][m] == r)
+              else np.nan for r in range(n)]
+    out: dict[str, Any] = {
+        "seed": seed, "arena": arena.name, "ticks": ticks, "units": units,
+        "room_occupancy": [float(np.mean(lab == r)) for r in range(n)],
+        "room_cell_balanced_accuracy": bacc,
+        "room_cell_units": [c.unit for c in cells],
+        "room_cell_mean": float(np.nanmean(bacc)),
+        "decoder_balanced_accuracy": float(np.nanmean(recall)),
+    }
+    if args.ceiling:
+        ceil = M.ridge_ceiling(model.features(rec.sensors), np.where(in_room, lab, 0), n,
+                               mask=in_room, folds=5, gap=50)
+        per = [M.balanced_accuracy((ceil.predicted == r)[in_room], (lab == r)[in_room])
+               for r in range(n)]
+        out.update(ceiling_room_balanced_accuracy=per,
+                   ceiling_room_mean=float(np.nanmean(per)),
+                   ceiling_decoder_balanced_accuracy=ceil.balanced_accuracy,
+                   gap_to_ceiling=float(np.nanmean(per) - np.nanmean(bacc)))
+    # kidnapping: an unseen test run continuing from the end of training
+    test_len = ticks - n_train
+    run, events = _kidnapped_run(arena, rec, n_train, test_len, seed, args.rho, rooms,
+                                 args.cache)
+    x_end = np.asarray(model.reservoir_.run(rec.sensors[:n_train]))[-1]
+    X = np.asarray(model.reservoir_.run(run.sensors, x0=x_end))
+    Yk = model.ica_.transform(model.sfa_.transform(
+        np.concatenate([run.sensors.astype(X.dtype), X], axis=1)))
+    lab_k = room_labels(run, rooms)
+    dec_k = _nearest_centroid(Yk, cent)
+    correct = (dec_k == lab_k) | (lab_k < 0)
+    real = [e for e in events if 0 < e < len(run)
+            and lab_k[e] >= 0 and room_labels(run, rooms)[e - 1] != lab_k[e]]
+    rec_t = M.recovery_times(correct, real, hold=args.hold)
+    fin = rec_t[np.isfinite(rec_t)]
+    out.update(kidnap_events=len(real),
+               kidnap_recovery_ticks=float(fin.mean()) if fin.size else float("nan"),
+               kidnap_recovery_ticks_max=float(fin.max()) if fin.size else float("nan"),
+               kidnap_unrecovered=int(np.isnan(rec_t).sum()))
+    return out
+
+
+def run(args: argparse.Namespace) -> dict:
+    if args.n_rooms < 2:
+        raise SystemExit(f"--n-rooms must be >= 2, got {args.n_rooms}")
+    out = prepare_out(args.out)
+    quick = bool(args.quick)
+    seeds = _seeds(args)
+    t0 = time.perf_counter()
+    rows = []
+    with Progress(len(seeds), f"rooms ({args.n_rooms} per flat)") as bar:
+        for seed in seeds:
+            rows.append(_one_flat(args, seed, quick))
+            bar.update()
+
+    def stat(key: str) -> dict[str, Any]:
+        vals = [r.get(key, float("nan")) for r in rows]
+        mean, sd = mean_sd(vals)
+        fin = [v for v in vals if np.isfinite(v)]
+        return {"mean": mean, "sd": sd, "min": min(fin) if fin else float("nan"),
+                "max": max(fin) if fin else float("nan"), "per_seed": vals}
+
+    keys = ("room_cell_mean", "decoder_balanced_accuracy", "ceiling_room_mean",
+            "ceiling_decoder_balanced_accuracy", "gap_to_ceiling", "kidnap_recovery_ticks",
+            "kidnap_recovery_ticks_max")
+    summary = {k: stat(k) for k in keys}
+    metrics: dict[str, Any] = {
+        "scenario": "rooms", "quick": quick, "n_rooms": args.n_rooms, "seeds": seeds,
+        "seeds_note": "each seed is one generated flat, one exploration run and one reservoir",
+        "units": args.units or 2 * args.n_rooms, "leak": list(args.leak),
+        **{k: summary[k]["mean"] for k in keys},
+        "summary": summary,
+        "kidnap_unrecovered": int(sum(r["kidnap_unrecovered"] for r in rows)),
+        "flats": rows, "targets": TARGETS,
+        "timing_s": {"total": time.perf_counter() - t0},
+    }
+    if args.figures:
+        _figure(out, rows, args.n_rooms, seeds)
+    write_metrics(out, metrics, summary=(
+        f"rooms: {args.n_rooms} per flat, {len(seeds)} flats: room cell "
+        f"{metrics['room_cell_mean']:.3f}, decoder {metrics['decoder_balanced_accuracy']:.3f}"
+        + (f", ceiling {metrics['ceiling_room_mean']:.3f}" if args.ceiling else "")))
+    return metrics
+
+
+def _figure(out, rows: list[dict[str, Any]], n_rooms: int, seeds: list[int]) -> None:
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(max(5, 0.45 * len(rows) + 2), 3.6))
+    x = np.arange(len(rows))
+    ax.bar(x - 0.2, [r["room_cell_mean"] for r in rows], 0.4, label="room cells (mean)")
+    ax.bar(x + 0.2, [r["decoder_balanced_accuracy"] for r in rows], 0.4,
+           label="decoder over rooms")
+    if "ceiling_room_mean" in rows[0]:
+        ax.plot(x, [r["ceiling_room_mean"] for r in rows], "k_", ms=14, mew=2,
+                label="ceiling (ridge, per room)")
+    ax.axhline(1 / n_rooms, color="0.6", lw=0.8, ls=":")
+    ax.set_xticks(x, [str(s) for s in seeds], fontsize=7)
+    ax.set_xlabel("flat seed")
+    ax.set_ylabel("balanced accuracy (test)")
+    ax.set_ylim(0, 1.02)
+    ax.set_title(f"room cells in generated {n_rooms}-room flats", fontsize=10)
+    ax.legend(fontsize=7, loc="lower right")
+    fig.tight_layout()
+    save_figure(fig, out / "rooms.png", dpi=110)
+    plt.close(fig)

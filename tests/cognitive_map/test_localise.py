@@ -1,0 +1,75 @@
+"""Re-localisation in the map: known place changes, Weber timing, the time limit."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from hippo.cognitive_map import Action, TransitionGraph
+from hippo.cognitive_map.localise import LocaliserParams, MapLocaliser
+
+
+def corridor() -> TransitionGraph:
+    """1 -> 2 -> 3 -> 4, each stay 4 s."""
+    g = TransitionGraph()
+    for a in (1, 2, 3):
+        g.add_transition(a, a + 1, Action.move(0.0, 20.0), delay=4.0)
+    return g
+
+
+def test_one_known_change_localises_and_unknown_ones_do_not():
+    g, loc = corridor(), MapLocaliser()
+    loc.reset(100.0)
+    assert not loc.observe(3, 101.0, g)        # the stale winner: nothing to check
+    assert not loc.observe(1, 102.0, g)        # 3 -> 1 is not in the map
+    assert loc.observe(2, 104.0, g)            # 1 -> 2 is
+    assert loc.time_to_localise == pytest.approx(4.0)
+    assert loc.events == 3
+
+
+def test_timing_counts_from_the_second_change_with_weber_tolerance():
+    g = corridor()
+    loc = MapLocaliser(LocaliserParams(n_known=2, delay_tolerance=0.5))
+    loc.reset(0.0)
+    loc.observe(1, 0.5, g)
+    assert not loc.observe(2, 1.0, g)          # first change: known, timing not checked
+    assert not loc.observe(3, 1.5, g)          # 0.5 s in 2 against a learned 4 s: too fast
+    assert not loc.observe(4, 5.5, g)          # a known 4 s, but the run restarted at 3
+    loc.reset(10.0)
+    loc.observe(1, 11.0, g)
+    loc.observe(2, 12.0, g)
+    # within x1.5 of the learned 4 s: 4 * 1.4 = 5.6 s passes, 4 * 1.6 = 6.4 s would not
+    assert loc.observe(3, 12.0 + 5.6, g)
+
+
+def test_weber_bound_is_symmetric_in_log_time():
+    g = corridor()
+    for stay, want in ((4.0 / 1.49, True), (4.0 / 1.51, False), (4.0 * 1.49, True),
+                       (4.0 * 1.51, False)):
+        loc = MapLocaliser(LocaliserParams(n_known=2))
+        loc.reset(0.0)
+        loc.observe(1, 1.0, g)
+        loc.observe(2, 2.0, g)
+        assert loc.observe(3, 2.0 + stay, g) is want, stay
+
+
+def test_max_time_gives_up_waiting():
+    g, loc = corridor(), MapLocaliser(LocaliserParams(max_time=30.0))
+    loc.reset(0.0)
+    loc.observe(4, 1.0, g)
+    assert not loc.check(29.0)
+    assert loc.check(30.0) and loc.time_to_localise == pytest.approx(30.0)
+
+
+def test_bad_input_is_named():
+    with pytest.raises(ValueError, match="n_known"):
+        LocaliserParams(n_known=0)
+    with pytest.raises(ValueError, match="max_time"):
+        LocaliserParams(max_time=-1)
+    loc = MapLocaliser()
+    loc.reset(5.0)
+    with pytest.raises(ValueError, match="finite time"):
+        loc.observe(1, math.nan, corridor())
+    with pytest.raises(ValueError, match="finite time"):
+        loc.observe(1, 1.0, corridor())

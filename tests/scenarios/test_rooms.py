@@ -1,0 +1,30 @@
+"""`hippo run rooms --quick`: one generated flat end to end, values a broken pipeline misses."""
+
+import json
+
+import pytest
+
+from hippo.cli import run_scenario
+
+
+def test_rooms_quick(tmp_path):
+    out = tmp_path / "rooms"
+    m = run_scenario("rooms", ["--quick", "--out", str(out)])
+    assert (out / "metrics.json").exists() and (out / "rooms.png").exists()
+    saved = json.loads((out / "metrics.json").read_text())
+    assert saved["seeds"] == [0] and m["units"] == 6 and m["n_rooms"] == 3
+    flat = m["flats"][0]
+    assert len(flat["room_cell_balanced_accuracy"]) == 3
+    # seed 0, quick (9000 ticks, 150 neurons): room cells 0.67 (chance 0.5), decoder over
+    # rooms 0.56 (chance 0.33), ceiling 0.70
+    assert 0.6 <= m["room_cell_mean"] <= 1.0
+    assert 0.45 <= m["decoder_balanced_accuracy"] <= 1.0
+    assert 0.6 <= m["ceiling_room_mean"] <= 1.0
+    assert flat["kidnap_events"] >= 1 and m["kidnap_unrecovered"] == 0
+
+
+def test_rooms_arguments():
+    with pytest.raises(SystemExit):
+        run_scenario("rooms", ["--quick", "--n-rooms", "1"])
+    with pytest.raises(SystemExit):
+        run_scenario("rooms", ["--quick", "--arenas", "3", "--seeds", "0-1"])

@@ -1,0 +1,155 @@
+"""The brain on symbolic senses: one neural chain, a typed tick, rewards, extinction, forgetting."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from hippo.brain import Brain, BrainParams, Tick
+from hippo.cognitive_map import DriveParams
+from hippo.perception.states import StateLayer, StateLayerParams
+from hippo.timing import NonOccurrence, SpectralTiming, TransitionCells, TransitionParams
+from hippo.types import Mode, Observation, StateKind
+
+DT = 0.2
+PLACES = {"A": np.array([1.0, 0.0, 0.0]), "B": np.array([0.0, 1.0, 0.0]),
+          "C": np.array([0.0, 0.0, 1.0])}
+
+
+class Stub:
+    """A place source that reports the place it is told (``where``)."""
+
+    kind = "stub"
+    n_units = 3
+
+    def __init__(self) -> None:
+        self.where = "B"
+
+    def step(self, obs, truth=None):
+        return PLACES[self.where]
+
+    def reset(self) -> None:
+        pass
+
+    def prime(self, sensors) -> None:
+        pass
+
+
+class Run:
+    """Feeds a brain one observation per tick (odometry: 1 cm forward while moving)."""
+
+    def __init__(self, brain: Brain, places: Stub) -> None:
+        self.brain, self.places, self.tick = brain, places, 0
+
+    def step(self, where: str, *, moving: bool, sound: bool = False) -> Tick:
+        self.places.where = where
+        self.tick += 1
+        odo = np.array([1.0, 0.0, 0.0]) if moving else np.zeros(3)
+        obs = Observation(round(self.tick * DT, 9), self.tick, np.full(8, 0.5), 0, sound, odo,
+                          moving)
+        return self.brain.step(obs)
+
+    def ticks(self, n: int, where: str, *, moving: bool) -> list[Tick]:
+        return [self.step(where, moving=moving) for _ in range(n)]
+
+    def trial(self, delay: float | None, wait: float = 12.0) -> list[Tick]:
+        """From B to A, stop at A; the sound comes ``delay`` s after the stop (None: never);
+        then back to B."""
+        self.ticks(15, "B", moving=True)
+        self.ticks(10, "A", moving=True)
+        out = []
+        for k in range(int(wait / DT)):
+            sound = delay is not None and abs((k + 1) * DT - delay) < DT / 2
+            out.append(self.step("A", moving=False, sound=sound))
+            if sound:
+                break
+        self.ticks(5, "A", moving=False)
+        self.ticks(10, "A", moving=True)
+        return out
+
+
+def make(**params) -> tuple[Brain, Run]:
+    places = Stub()
+    params.setdefault("settle_time", 0.0)
+    params.setdefault("cycle_visits", 100)   # the short symbolic trials revisit A often
+    p = BrainParams(states=StateLayerParams(normalize="fixed", place_scale=0.5, context_time=1.0),
+                    **params)
+    brain = Brain(places, drives={"sound": DriveParams(epsilon=0.02, extinction=0.5)}, params=p)
+    return brain, Run(brain, places)
+
+
+def test_perceive_is_the_one_neural_chain():
+    """Brain.perceive = state layer -> spectral timing -> transition cells -> non-occurrence,
+    step for step the same as wiring the modules by hand."""
+    rng = np.random.default_rng(0)
+    brain = Brain(params=BrainParams(transitions=TransitionParams()))
+    layer, timing = StateLayer(), SpectralTiming()
+    cells, nonocc = TransitionCells(timing), NonOccurrence()
+    for k in range(300):
+        place = rng.uniform(0, 1, 3) * (1 + (k // 40) % 3 == np.arange(3))
+        colour, sound, moving = int(k % 90 > 80), k % 97 == 0, k % 50 < 40
+        seen = brain.perceive(place, colour=colour, sound=sound, moving=moving, dt=DT)
+        ev = layer.step(place, colour=colour, sound=sound, moving=moving, dt=DT)
+        ro = cells.step(timing.step(ev.winner, DT), DT)
+        omitted = nonocc.step(ro, DT)
+        assert seen.event.winner == ev.winner and seen.event.changed == ev.changed
+        assert seen.timing.readouts.keys() == ro.keys()
+        for key, r in ro.items():
+            assert seen.timing.readouts[key].prediction == r.prediction
+        assert seen.timing.omitted == omitted
+    with pytest.raises(ValueError, match="no place source"):
+        brain.step(Observation(0.0, 0, np.zeros(8), 0, False, np.zeros(3), True))
+
+
+def test_tick_is_a_small_frozen_record_and_settling_explores():
+    brain, run = make(settle_time=1.0)
+    tick = run.step("B", moving=True)
+    assert isinstance(tick, Tick) and tick.mode == Mode.EXPLORE
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        tick.mode = Mode.WAIT  # type: ignore[misc]
+    brain.lifted()
+    ticks = run.ticks(6, "B", moving=True)
+    assert all(t.settling and t.mode == Mode.EXPLORE and t.winner is None for t in ticks[:4])
+    assert not ticks[-1].settling and ticks[-1].winner is not None
+
+
+def test_rewards_link_the_sound_drive_and_extinction_weakens_the_link():
+    brain, run = make()
+    for _ in range(3):
+        run.trial(delay=3.0)
+    sound = brain.layer.find("sound")
+    links = brain.drives.links("sound")
+    (goal, w), = links.items()
+    assert goal[1] == sound and brain.kind(goal[0]) == StateKind.STILL
+    assert w == pytest.approx(1 - 0.5**3)   # learning_rate 0.5, three rewards
+    # timed from entering still@A: proprioception is debounced over 2 ticks (0.4 s)
+    assert brain.cells.learned_delay(goal) == pytest.approx(3.0 - 2 * DT, abs=0.1)
+    # extinction: the robot waits for the sound, it does not come; the non-occurrence neuron
+    # ends the wait, inhibits the drive and (extinction 0.5) halves the link
+    brain.drives.set_level("sound", 1.0)
+    ticks = run.trial(delay=None)
+    waited = [t for t in ticks if t.mode == Mode.WAIT]
+    assert waited, "the robot never waited for the sound"
+    fired = [t for t in ticks if goal in t.omitted]
+    assert len(fired) == 1 and fired[0].t - ticks[0].t == pytest.approx(3.6, abs=0.5)
+    assert brain.drives.links("sound")[goal] == pytest.approx(w * 0.5)
+    assert brain.drives.is_inhibited("sound") or brain.drives.level("sound") < 0.1
+
+
+def test_forgetting_drops_transitions_not_seen_again():
+    def walk(forget: float) -> tuple[Brain, tuple[int, int]]:
+        brain, run = make(forget=forget)
+        for where in "BAC":                 # B -> A -> C once
+            run.ticks(15, where, moving=True)
+        a, c = brain.layer.find("place", 0), brain.layer.find("place", 2)
+        assert (a, c) in brain.graph
+        for _ in range(4):                  # then only C -> B -> A -> C ... without A -> C?
+            for where in "BA":
+                run.ticks(15, where, moving=True)
+        return brain, (a, c)
+
+    kept, ac = walk(1.0)
+    assert ac in kept.graph                 # the default never forgets
+    forgot, ac = walk(0.5)
+    assert ac not in forgot.graph           # 0.5**k < 0.05 after k >= 5 other transitions
+    assert len(forgot.graph) < len(kept.graph)
