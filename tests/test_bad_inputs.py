@@ -494,7 +494,7 @@ CASES: list[tuple[str, typing.Callable, type, str]] = [
     # --- the agent's observation (one cheap check per tick)
     ("agent t nan", lambda p: _agent_step(t=math.nan), V, r"obs\.t must be a finite time"),
     ("agent t inf", lambda p: _agent_step(t=math.inf), V, r"obs\.t"),
-    ("agent t backwards", lambda p: _agent_step(t=0.0), V, r"clock must not run backwards"),
+    ("agent t backwards", lambda p: _agent_step(t=-0.2), V, r"clock must not run backwards"),
     ("agent t text", lambda p: _agent_step(t="0.4"), V, r"obs\.t"),
     ("agent ir x50", lambda p: _agent_step(ir=np.full(8, 50.0)), V, r"in \[0, 1\]"),
     ("agent ir None", lambda p: _agent_step(ir=None), V, r"obs\.ir must have shape \(8,\)"),

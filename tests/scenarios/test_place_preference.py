@@ -65,9 +65,9 @@ def test_an_untuned_delay_is_learned(tmp_path):
 
 
 def test_bad_delay_is_refused(tmp_path, capsys):
-    with pytest.raises(SystemExit) as stop:  # a usage error: status 2, before any work
+    with pytest.raises(SystemExit) as exc:
         run_scenario("place-preference", ["--quick", "--delay", "-1", "--out", str(tmp_path)])
-    assert stop.value.code == 2 and "--delay" in capsys.readouterr().err
+    assert exc.value.code == 2 and "--delay" in capsys.readouterr().err
 
 
 def _still_runs(observations):
