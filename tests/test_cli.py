@@ -88,6 +88,12 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["record", "two-rooms", "--ticks", "0"], "--ticks"),
     (["record", "two-rooms", "--out", str(ROOT)], "--out"),
     (["record", "two-rooms", "--rho", "3"], "--rho"),
+    # rooms
+    (["run", "rooms", "--n-rooms", "1"], "--n-rooms"),
+    (["run", "rooms", "--ticks-per-room", "10"], "--ticks-per-room"),
+    (["run", "rooms", "--sfa-cutoff", "2"], "--sfa-cutoff"),
+    (["run", "rooms", "--cache", A_FILE], "--cache"),
+    (["run", "two-rooms", "--seeds", "x-y"], "--seeds"),
     # sweep
     (["sweep", "bogus"], "bogus"),
     (["sweep", "two-rooms", "--workers", "0"], "--workers"),

@@ -23,13 +23,17 @@ if TYPE_CHECKING:
 
 def state_centres(winner: np.ndarray, x: np.ndarray, y: np.ndarray) -> dict[int, tuple[float,
                                                                                         float]]:
-    """Mean true position of the robot while each state was the winner (analysis only)."""
+    """Where the robot was while each state was the winner (analysis only): the logged
+    position nearest to their mean, so a state is drawn where the robot really was (a mean
+    of positions around a corner can fall inside a wall or an obstacle)."""
     out = {}
     for s in np.unique(winner):
         if s < 0:
             continue
         m = winner == s
-        out[int(s)] = (float(x[m].mean()), float(y[m].mean()))
+        px, py = x[m], y[m]
+        k = int(np.argmin((px - px.mean()) ** 2 + (py - py.mean()) ** 2))
+        out[int(s)] = (float(px[k]), float(py[k]))
     return out
 
 
@@ -41,9 +45,13 @@ def plot_map(arena: Arena, agent: Agent, arrays: Mapping[str, np.ndarray], *,
     fig, ax = plt.subplots(figsize=(7, 7 * arena.height / arena.width + 0.8),
                            layout="constrained")
     draw_arena(arena, ax, locations=False)
-    plot_cognitive_map(agent.graph, act, agent.drives, ax=ax, positions=pos,
-                       title=title or f"learned map: {len(pos)} states, {len(agent.graph)} "
-                                      "transitions")
+    shown = sum(t[0] in pos and t[1] in pos for t in agent.graph)
+    plot_cognitive_map(agent.graph, act, agent.drives, ax=ax, positions=pos, restrict=True,
+                       title=title or f"learned map: {len(pos)} of {agent.layer.n_states} "
+                       f"states (those that won, where the robot was),\n{shown} of "
+                       f"{len(agent.graph)} transitions")
+    ax.set_xlim(-2, arena.width + 2)
+    ax.set_ylim(-2, arena.height + 2)
     return fig, ax
 
 

@@ -50,8 +50,8 @@ def plot_cognitive_map(graph: TransitionGraph, activity: Activity | Mapping[Tran
                        walls: Iterable[Segment] | None = None, path: Sequence[Transition] = (),
                        ax: Axes | None = None, positions: Mapping[int, Sequence[float]]
                        | None = None, cmap: str = "viridis", log_activity: bool = True,
-                       labels: bool | None = None, title: str | None = None
-                       ) -> tuple[Figure, Axes]:
+                       labels: bool | None = None, title: str | None = None,
+                       restrict: bool = False) -> tuple[Figure, Axes]:
     """Draw ``graph`` over its arena; returns ``(fig, ax)``.
 
     activity:  per-transition activity (an :class:`Activity` or mapping); arrows take its colour
@@ -61,13 +61,15 @@ def plot_cognitive_map(graph: TransitionGraph, activity: Activity | Mapping[Tran
     path:      transitions to highlight (e.g. a plan).
     positions: state → (x, y), overriding the graph's stored positions.
     labels:    write state ids (default: when there are at most 60 states).
+    restrict:  draw only the states given in ``positions`` and the transitions between them
+               (positions from another frame, such as path integration, are not mixed in).
     """
     if ax is None:
         fig = Figure(figsize=(6.5, 6.5), layout="constrained")
         ax = fig.add_subplot(1, 1, 1)
     else:
         fig = ax.figure
-    pos = state_layout(graph)
+    pos = {} if restrict and positions is not None else state_layout(graph)
     if positions is not None:
         pos.update({int(s): np.asarray(p, dtype=float) for s, p in positions.items()})
 
@@ -81,8 +83,9 @@ def plot_cognitive_map(graph: TransitionGraph, activity: Activity | Mapping[Tran
     else:
         act = dict(activity) if activity is not None else None
 
-    moves = [t for t in graph if t[0] != t[1] and graph.action(t).kind == "move"]
-    waits = [t for t in graph if t not in set(moves)]
+    drawn = [t for t in graph if t[0] in pos and t[1] in pos]
+    moves = [t for t in drawn if t[0] != t[1] and graph.action(t).kind == "move"]
+    waits = [t for t in drawn if t not in set(moves)]
     scale = np.ptp(np.array(list(pos.values())), axis=0).max() if pos else 1.0
     scale = float(scale) or 1.0
     off = 0.012 * scale
@@ -93,9 +96,13 @@ def plot_cognitive_map(graph: TransitionGraph, activity: Activity | Mapping[Tran
         d = p1 - p0
         length = np.hypot(d[:, 0], d[:, 1])
         length[length == 0] = 1.0
-        normal = np.stack([-d[:, 1], d[:, 0]], axis=1) / length[:, None]
-        start = p0 + off * normal + 0.15 * d  # offset so that A->B and B->A do not overlap
-        vec = 0.7 * d
+        unit = d / length[:, None]
+        normal = np.stack([-unit[:, 1], unit[:, 0]], axis=1)
+        # from the rim of A's circle to the rim of B's (offset sideways so that A->B and B->A
+        # do not overlap); very short transitions keep a tenth of their length
+        rim = np.minimum(2.2 * off, 0.45 * length)[:, None]
+        start = p0 + off * normal + rim * unit
+        vec = d - 2 * rim * unit
         kw = dict(angles="xy", scale_units="xy", scale=1.0, width=0.004, headwidth=4,
                   headlength=5, zorder=2)
         if act is not None:
@@ -104,7 +111,7 @@ def plot_cognitive_map(graph: TransitionGraph, activity: Activity | Mapping[Tran
                 pos_vals = vals[vals > 0]
                 floor = pos_vals.min() if pos_vals.size else 1.0
                 c = np.log10(np.maximum(vals, floor))
-                clabel = "log10 activity"
+                clabel = "drive activity, log10 (× w per transition from the goal)"
             else:
                 c, clabel = vals, "activity"
             q = ax.quiver(start[:, 0], start[:, 1], vec[:, 0], vec[:, 1], c, cmap=cmap, **kw)
@@ -126,19 +133,20 @@ def plot_cognitive_map(graph: TransitionGraph, activity: Activity | Mapping[Tran
             labels = len(states) <= 60
         if labels:
             for s, (x, y) in zip(states, sp, strict=True):
-                ax.text(x, y, str(s), ha="center", va="center", fontsize=6, zorder=5)
+                ax.text(x, y, str(s), ha="center", va="center", fontsize=6, zorder=5,
+                        clip_on=True)
 
     if drives is not None:
         first = True
         for t, names in drives.goals.items():
-            if t not in graph:
+            if t not in graph or t[0] not in pos or t[1] not in pos:
                 continue
             a, b = pos[t[0]], pos[t[1]]
             m = a + 0.8 * (b - a) if t[0] != t[1] else a
             ax.scatter([m[0]], [m[1]], marker="*", s=220, c="red", edgecolors="k", zorder=6,
                        label="goal transition" if first else None)
             ax.annotate(", ".join(names), m, textcoords="offset points", xytext=(6, 6),
-                        fontsize=7, color="darkred", zorder=6)
+                        fontsize=7, color="darkred", zorder=6, annotation_clip=True)
             first = False
 
     if path:

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from hippo.cli_args import out_dir
 from hippo.io import clean_stale_temps, save_json
 from hippo.sim.record import Recording
 
@@ -104,7 +105,7 @@ def add_seeds_argument(parser: argparse.ArgumentParser, what: str) -> None:
 
 
 def add_cache_argument(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--cache", default=None,
+    parser.add_argument("--cache", type=out_dir, default=None,
                         help="folder to keep and reuse recordings in (.npz), keyed by their "
                              "settings; default: record afresh")
 

@@ -43,7 +43,6 @@ from hippo.scenarios._common import (
     add_seeds_argument,
     cached_recording,
     mean_sd,
-    parse_leak,
     prepare_out,
     seed_list,
     sfa_cutoff,
@@ -57,22 +56,23 @@ TARGETS = {"gap_to_ceiling": 0.05, "decoder_balanced_accuracy": 0.85}
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--n-rooms", type=integer(2, 12), default=3, help="rooms per flat")
-    parser.add_argument("--arenas", type=integer(1, 10_000), default=None,
+    parser.add_argument("--n-rooms", type=integer(2, 20), default=3, help="rooms per flat")
+    parser.add_argument("--arenas", type=integer(1, 1000), default=None,
                         help="number of generated flats (one per seed)")
     add_seeds_argument(parser, "flats to generate (one flat, run and reservoir per seed)")
     add_cache_argument(parser)
-    parser.add_argument("--ticks-per-room", type=integer(1000, 10_000_000), default=8000,
+    parser.add_argument("--ticks-per-room", type=integer(2000, 10_000_000), default=8000,
                         help="recorded ticks per room of the flat")
     parser.add_argument("--rho", type=probability, default=0.008,
-                        help="wall-side switch probability per tick")
+                        help="wall-side switch probability")
     parser.add_argument("--neurons", type=integer(1, 20_000), default=600, help="reservoir size")
     parser.add_argument("--units", type=integer(0, 500), default=0,
                         help="SFA and ICA units (default 0: twice the number of rooms)")
     parser.add_argument("--leak", type=numbers((1, None), 0.0, 1.0, lo_open=True),
                         default=(0.05, 0.15),
                         help="leak rates, one per half (default: SMC09's 0.05,0.15)")
-    parser.add_argument("--ica-restarts", type=integer(1, 1000), default=10)
+    parser.add_argument("--ica-restarts", type=integer(1, 1000), default=10,
+                        help="FastICA restarts, best kept without labels")
     parser.add_argument("--sfa-cutoff", type=cli_sfa_cutoff, default="1e-8",
                         help="relative whitening cutoff in (0, 1), or 'auto'")
     parser.add_argument("--hold", type=integer(1, 10_000), default=5,
