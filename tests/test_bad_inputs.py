@@ -153,7 +153,8 @@ def _agent_obs(**change):
     agent = Agent(GroundTruthPlaceCells(np.array([[50.0, 50.0], [150.0, 50.0]])),
                   sensors=world.sensors, robot=world.robot, seed=0)
     obs = world.reset(0)
-    obs = world.step(agent.step(obs, world.truth))
+    for _ in range(2):  # the agent's clock is now at 0.2 s
+        obs = world.step(agent.step(obs, world.truth))
     fields = {k: getattr(obs, k) for k in Observation.__slots__}
     fields.update(change)
     return agent, Observation(**fields), world.truth

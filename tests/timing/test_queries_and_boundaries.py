@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from timing_helpers import DT, make, trial
 
-from hippo.timing import NLMS, NLMSParams, Satisfaction, SatisfactionParams, SpectralTiming
+from hippo.timing import NLMS, NLMSParams, SpectralTiming
 
 
 def _learned_7s():
@@ -53,38 +53,6 @@ def test_transition_query_errors_name_the_argument():
     with pytest.raises(ValueError, match="state must be"):
         SpectralTiming().battery(-2)
     assert np.array_equal(SpectralTiming().battery(3), np.zeros(SpectralTiming().n_cells))
-
-
-def test_satisfaction_starts_at_minus_theta_and_takes_a_column():
-    s = Satisfaction(2, SatisfactionParams(theta=0.3))
-    np.testing.assert_array_equal(s.prediction, [-0.3, -0.3])
-    s.step({"t": 1.0}, np.array([[1.0], [0.0]]), DT)  # (n, 1) is flattened
-    assert s.weights.shape == (2, 1) and s.weights[0, 0] > 0 and s.weights[1, 0] == 0.0
-    s.reset(keep_weights=True)
-    np.testing.assert_array_equal(s.prediction, [-0.3, -0.3])
-    assert s.weights[0, 0] > 0
-
-
-def test_satisfaction_bounds_and_messages():
-    SatisfactionParams(gamma=0.0, theta=0.0)  # zero decay and threshold are allowed
-    with pytest.raises(ValueError, match="alpha"):
-        SatisfactionParams(alpha=0.0)
-    with pytest.raises(ValueError, match="gamma"):
-        SatisfactionParams(gamma=-0.1)
-    with pytest.raises(ValueError, match="theta"):
-        SatisfactionParams(theta=-0.1)
-    s = Satisfaction(1)
-    with pytest.raises(ValueError, match=r"transitions must be a mapping.*list"):
-        s.step([1.0], np.ones(1), DT)
-    with pytest.raises(ValueError, match="satisfaction contains"):
-        s.step({}, np.array([np.nan]), DT)
-    with pytest.raises(ValueError, match="dt must be"):
-        s.step({}, np.ones(1), 0.0)
-    with pytest.raises(ValueError, match="n_drives"):
-        Satisfaction(0)
-    # predicting never recruits a transition
-    s.predict({"new": 1.0})
-    assert s.keys == []
 
 
 def test_nlms_layer_shapes_and_messages():
