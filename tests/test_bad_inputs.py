@@ -514,7 +514,7 @@ CASES: list[tuple[str, typing.Callable, type, str]] = [
     ("agent obs None", lambda p: _agent_step_raw(None), V, r"obs must be an Observation"),
     # --- world and recordings
     ("world step 3 values", lambda p: _world().step((1.0, 2.0, 3.0)), V,
-     r"pair \(left, right\).*\(1\.0, 2\.0, 3\.0\)"),
+     r"pair of wheel speeds \(left, right\).*\(1\.0, 2\.0, 3\.0\)"),
     ("world step 1 value", lambda p: _world().step((1.0,)), V, r"pair"),
     ("world step text", lambda p: _world().step("ab"), V, r"pair"),
     ("world step None", lambda p: _world().step(None), V, r"pair"),
