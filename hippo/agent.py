@@ -93,11 +93,6 @@ class Agent:
     sensors, robot : the robot the motor layer drives.
     seed : the run's seed: the agent's random streams (:mod:`hippo.seeds`: ``brain``,
         ``motor-explore``, ``motor-steer``).
-
-    The brain's parts are shown under the agent's name (``agent.graph``, ``agent.drives``,
-    ``agent.layer``, ``agent.cells``, ``agent.state``, ``agent.mode`` ...), and so are its
-    :meth:`~hippo.brain.Brain.lifted`, :meth:`~hippo.brain.Brain.reward`,
-    :meth:`~hippo.brain.Brain.describe` and :meth:`~hippo.brain.Brain.snapshot`.
     """
 
     def __init__(self, places: PlaceSource, *, drives: Mapping[str, DriveParams] | None = None,

@@ -1,7 +1,7 @@
 """A wrapper that adds hippo's own cells to a robot environment's observation.
 
 :class:`HippoCells` runs, at every tick, the same perception as hippo's agent (the brain's
-neural chain, :meth:`hippo.brain.Brain.perceive`):
+neural chain, :meth:`hippo.brain.Brain.perceive`)::
 
     place = PlacePrototypes(RCSFAICA.step(ir))      learned place cells (or the ICA units)
     event = StateLayer.step(place, floor, sound, moving)    winner-take-all state, sensory events
