@@ -153,7 +153,8 @@ def _agent_obs(**change):
     agent = Agent(GroundTruthPlaceCells(np.array([[50.0, 50.0], [150.0, 50.0]])),
                   sensors=world.sensors, robot=world.robot, seed=0)
     obs = world.reset(0)
-    obs = world.step(agent.step(obs, world.truth))
+    for _ in range(2):  # the agent's clock is now at 0.2 s
+        obs = world.step(agent.step(obs, world.truth))
     fields = {k: getattr(obs, k) for k in Observation.__slots__}
     fields.update(change)
     return agent, Observation(**fields), world.truth
@@ -513,7 +514,7 @@ CASES: list[tuple[str, typing.Callable, type, str]] = [
     ("agent obs None", lambda p: _agent_step_raw(None), V, r"obs must be an Observation"),
     # --- world and recordings
     ("world step 3 values", lambda p: _world().step((1.0, 2.0, 3.0)), V,
-     r"pair \(left, right\).*\(1\.0, 2\.0, 3\.0\)"),
+     r"pair of wheel speeds \(left, right\).*\(1\.0, 2\.0, 3\.0\)"),
     ("world step 1 value", lambda p: _world().step((1.0,)), V, r"pair"),
     ("world step text", lambda p: _world().step("ab"), V, r"pair"),
     ("world step None", lambda p: _world().step(None), V, r"pair"),

@@ -293,7 +293,7 @@ class World:
                 raise ValueError
             left, right = float(action[0]), float(action[1])
         except (TypeError, IndexError, ValueError, KeyError):
-            raise ValueError(f"action must be a pair (left, right) of wheel speeds in cm/s, "
+            raise ValueError(f"action must be a pair of wheel speeds (left, right) in cm/s, "
                              f"got {action!r}") from None
         if not (math.isfinite(left) and math.isfinite(right)):
             raise ValueError(f"wheel commands must be finite, got ({left}, {right})")
