@@ -395,6 +395,27 @@ def _paths(obj, prefix=()):
             yield from _paths(v, (*prefix, i))
 
 
+def _mutate_json(data, path, how, value):
+    """A copy of the JSON document ``data`` with the field at ``path`` set to ``value``,
+    deleted, or duplicated (``how``); the empty path replaces the whole document."""
+    obj = json.loads(json.dumps(data))
+    if not path:
+        return value
+    parent = obj
+    for k in path[:-1]:
+        parent = parent[k]
+    k = path[-1]
+    if how == "set":
+        parent[k] = value
+    elif how == "delete":
+        del parent[k]
+    elif isinstance(parent, list):
+        parent.append(parent[k])
+    else:
+        parent[f"{k}_copy"] = parent[k]
+    return obj
+
+
 def _json_field_test(files, n: int) -> None:
     data = json.loads(files["drives"][0].read_text())
     paths = list(_paths(data))
@@ -403,23 +424,7 @@ def _json_field_test(files, n: int) -> None:
               suppress_health_check=list(HealthCheck))
     @given(st.integers(0, 10_000), st.sampled_from(["set", "delete", "dup"]), _JSON_VALUES)
     def run(i, how, value):
-        obj = json.loads(json.dumps(data))
-        path = paths[i % len(paths)]
-        if not path:
-            obj = value
-        else:
-            parent = obj
-            for k in path[:-1]:
-                parent = parent[k]
-            k = path[-1]
-            if how == "set":
-                parent[k] = value
-            elif how == "delete":
-                del parent[k]
-            elif isinstance(parent, list):
-                parent.append(parent[k])
-            else:
-                parent[f"{k}_copy"] = parent[k]
+        obj = _mutate_json(data, paths[i % len(paths)], how, value)
         _try_load(files, "drives", json.dumps(obj).encode(), ".json")
 
     run()
@@ -449,23 +454,7 @@ def _snapshot_field_test(tmp_root: Path, n: int) -> None:
               suppress_health_check=list(HealthCheck))
     @given(st.integers(0, 10**6), st.sampled_from(["set", "delete", "dup"]), _JSON_VALUES)
     def run(i, how, value):
-        obj = json.loads(json.dumps(data))
-        path = paths[i % len(paths)]
-        if not path:
-            obj = value
-        else:
-            parent = obj
-            for k in path[:-1]:
-                parent = parent[k]
-            k = path[-1]
-            if how == "set":
-                parent[k] = value
-            elif how == "delete":
-                del parent[k]
-            elif isinstance(parent, list):
-                parent.append(parent[k])
-            else:
-                parent[f"{k}_copy"] = parent[k]
+        obj = _mutate_json(data, paths[i % len(paths)], how, value)
         MUTATED["files"] += 1
         with tempfile.TemporaryDirectory() as tmp:
             d = Path(tmp)
