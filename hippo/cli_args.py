@@ -183,3 +183,14 @@ def out_file(text: str) -> Path:
         raise argparse.ArgumentTypeError(f"cannot write to {text!r}: the file is read-only")
     out_dir(str(path.parent) if str(path.parent) else ".")
     return path
+
+
+#: the place sources a closed-loop task can run on (learned is the default everywhere)
+PLACE_CELLS = ("learned", "ground-truth")
+
+
+def add_place_cells(parser: argparse.ArgumentParser) -> None:
+    """``--place-cells learned|ground-truth``: the one option every closed-loop task shares."""
+    parser.add_argument("--place-cells", choices=PLACE_CELLS, default="learned",
+                        help="learned from the robot's sensors, or Gaussian fields on the true "
+                             "position (to measure what learning costs)")

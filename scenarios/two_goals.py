@@ -26,7 +26,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from hippo.agent import Agent, AgentParams
-from hippo.cli_args import Parser, integer, number, out_dir
+from hippo.cli_args import Parser, add_place_cells, integer, number, out_dir
 from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.io import save_json
 from hippo.plots.sim import draw_arena
@@ -74,9 +74,7 @@ def main(argv: list[str] | None = None) -> dict:
                     help="output folder (created if needed)")
     ap.add_argument("--quick", action="store_true",
                     help="a short run for tests and first looks: its numbers are a smoke test")
-    ap.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned",
-                    help="learned from the robot's sensors, or Gaussian fields on the true "
-                         "position")
+    add_place_cells(ap)
     ap.add_argument("--minutes", type=number(1.0, 600.0), default=20.0,
                     help="simulated minutes alone (quick: at most 6)")
     args = ap.parse_args(argv)

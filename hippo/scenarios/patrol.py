@@ -39,7 +39,7 @@ from enum import IntEnum
 import numpy as np
 
 from hippo.agent import Agent, AgentParams
-from hippo.cli_args import integer, number, numbers
+from hippo.cli_args import add_place_cells, integer, number, numbers
 from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
@@ -77,9 +77,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the three checkpoint waits in s, comma-separated (HIREL's)")
     parser.add_argument("--loops", type=integer(1, 100), default=5,
                         help="autonomous patrol loops")
-    parser.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned",
-                        help="learned from the robot's sensors, or Gaussian fields on the true "
-                             "position (to measure what learning costs)")
+    add_place_cells(parser)
     parser.add_argument("--explore-min", type=number(5.0, 600.0), default=30.0,
                         help="exploration, simulated minutes")
     parser.add_argument("--units", type=integer(1, 200), default=24,

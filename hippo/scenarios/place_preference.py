@@ -29,7 +29,7 @@ from enum import IntEnum
 import numpy as np
 
 from hippo.agent import Agent, AgentParams
-from hippo.cli_args import integer, number, probability
+from hippo.cli_args import add_place_cells, integer, number, probability
 from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
@@ -60,9 +60,7 @@ START_HEADINGS = {"south": 0.0, "east": math.pi / 2, "north": math.pi, "west": -
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--delay", type=number(0.2, 100.0), default=7.0,
                         help="reward delay in s (HIREL: 7)")
-    parser.add_argument("--place-cells", choices=["learned", "ground-truth"], default="learned",
-                        help="learned from the robot's sensors, or Gaussian fields on the true "
-                             "position (to measure what learning costs)")
+    add_place_cells(parser)
     parser.add_argument("--explore-min", type=number(5.0, 600.0), default=40.0,
                         help="exploration time in simulated minutes (HIREL: 40)")
     parser.add_argument("--explore-rho", type=probability, default=0.0,
