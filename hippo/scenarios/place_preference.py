@@ -166,10 +166,8 @@ def run(args: argparse.Namespace) -> dict:
                     (o.moving and o.floor != 1) or o.t - rec["still_t"] > 60.0)
 
             obs = s.run(int(args.trial_timeout / dt), until=done)
-            xs, ys, ts = (s.log.column(c, i0) for c in ("x", "y", "t"))
             if "entered_t" in rec:
-                m = ts <= rec["entered_t"]
-                rec["path_cm"] = float(np.sum(np.hypot(np.diff(xs[m]), np.diff(ys[m]))))
+                rec["path_cm"] = s.log.path_length(i0, (sx, sy), rec["entered_t"])
             if rewarded:
                 rec.pop("still_s", None)
                 rec["success"] = bool(exp.sounded)

@@ -94,6 +94,23 @@ class Log:
     def arrays(self) -> dict[str, np.ndarray]:
         return {k: np.asarray(v) for k, v in self.cols.items()}
 
+    def path_length(self, start: int, origin: tuple[float, float],
+                    until_t: float | None = None) -> float:
+        """Length (cm) of the robot's path from ``origin`` through the rows ``start:`` (up to
+        and including the row at time ``until_t``).
+
+        A row is written after its tick's step, so the first row is already one step away
+        from where the robot stood: ``origin`` (where it was put) starts the path. Without it
+        a straight run is up to one step short, and its ratio to the shortest path fell below 1.
+        """
+        xs, ys, ts = (self.column(c, start) for c in ("x", "y", "t"))
+        if until_t is not None:
+            keep = ts <= until_t
+            xs, ys = xs[keep], ys[keep]
+        xs = np.concatenate(([float(origin[0])], xs))
+        ys = np.concatenate(([float(origin[1])], ys))
+        return float(np.sum(np.hypot(np.diff(xs), np.diff(ys))))
+
     def save(self, out: Path, agent: Any, world: Any, *, phases: type[Enum] | None = None,
              drive_names: Sequence[str] | None = None) -> dict[str, np.ndarray]:
         """Write ``out/run.npz`` (per-tick arrays, phase and mode names, the drives' names and

@@ -79,3 +79,25 @@ def test_enum_names_and_events():
     assert list(ev["event_kind"]) == ["sound", "block_start"]
     assert event_arrays([])["event_t"].shape == (0,)
     assert Log(n_drives=2).cols["drives"] == []
+
+
+def test_path_length_starts_where_the_robot_was_put():
+    # a straight drive down an open corridor: the path is the straight line, never shorter
+    world, _, _ = _session()
+    log = Log()
+    world.place_robot(20.0, 15.0, 0.0)
+    obs = world.step((0.0, 0.0))
+    for _ in range(40):
+        obs = world.step((5.0, 5.0))
+        log.add(obs, world.truth, None, 0, 0)
+    end = world.truth.pose[:2]
+    straight = math.hypot(end[0] - 20.0, end[1] - 15.0)
+    assert straight > 10.0
+    assert log.path_length(0, (20.0, 15.0)) == pytest.approx(straight, rel=1e-3)
+    # the rows alone miss the first step: the old measure fell below the shortest path
+    rows_only = float(np.sum(np.hypot(np.diff(log.column("x")), np.diff(log.column("y")))))
+    assert rows_only < straight - 0.1
+    # cut at a time: the rows up to and including it
+    t_half = log.column("t")[19]
+    x_half = log.column("x")[19]
+    assert log.path_length(0, (20.0, 15.0), t_half) == pytest.approx(x_half - 20.0, abs=0.05)
