@@ -167,6 +167,17 @@ def points(count: tuple[int, int], unit: str = "") -> Callable[[str], list[tuple
     return parse
 
 
+def snapshot_dir(text: str) -> Path:
+    """A folder written by :func:`hippo.snapshot.save_snapshot` (its manifest is there)."""
+    path = Path(text).expanduser()
+    if not path.is_dir():
+        raise argparse.ArgumentTypeError(f"{text!r} is not a folder")
+    if not (path / "manifest.json").is_file():
+        raise argparse.ArgumentTypeError(f"{text!r} holds no saved robot (no manifest.json; "
+                                         "write one with --save)")
+    return path
+
+
 def sfa_cutoff(text: str) -> float | str:
     """The SFA whitening cutoff: a number in (0, 1), or ``auto``."""
     if text.strip() == "auto":
