@@ -43,6 +43,13 @@ def child(n: int, T: int, mode: str) -> None:
                       "wall_s": wall, "cpu_s": cpu}))
 
 
+def measure(n: int, T: int, mode: str = "stream") -> dict:
+    """One fit in a fresh process: its peak RSS, baseline, wall and CPU seconds (a dict)."""
+    out = subprocess.run([sys.executable, __file__, "--child", str(n), str(T), mode],
+                         capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=int, default=600)
@@ -61,9 +68,7 @@ def main() -> None:
         for mode in a.modes:
             if mode == "hold" and T > a.hold_limit:
                 continue
-            out = subprocess.run([sys.executable, __file__, "--child", str(a.n), str(T), mode],
-                                 capture_output=True, text=True, check=True)
-            r = json.loads(out.stdout.strip().splitlines()[-1])
+            r = measure(a.n, T, mode)
             print(f"{T:9,d} {mode:>7s} {r['peak_mb']:8.0f} {r['base_mb']:9.0f} "
                   f"{r['peak_mb'] - r['base_mb']:8.0f} {r['wall_s']:7.1f} ({r['cpu_s']:5.1f})",
                   flush=True)

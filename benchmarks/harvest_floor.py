@@ -87,17 +87,15 @@ def loop_scipy(M: np.ndarray, D: np.ndarray) -> None:
         x = out[t]
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--n", type=int, default=600)
-    ap.add_argument("--ticks", type=int, default=15855)
-    ap.add_argument("--rounds", type=int, default=5)
-    a = ap.parse_args()
+def measure(n: int = 600, ticks: int = 15855, rounds: int = 5
+            ) -> tuple[dict[str, tuple[float, float]], tuple[float, float] | None]:
+    """Best (wall, CPU) seconds per tick of each Python contender, and of the C floor (or
+    None if it cannot be built)."""
     rng = np.random.default_rng(0)
-    U = rng.random((a.ticks, 8))
-    res = Reservoir(ReservoirParams(n_inputs=8, n_neurons=a.n))
-    M = (rng.standard_normal((a.n, a.n)) * 0.04).astype(np.float32)
-    D = (rng.standard_normal((a.ticks, a.n)) * 0.1).astype(np.float32)
+    U = rng.random((ticks, 8))
+    res = Reservoir(ReservoirParams(n_inputs=8, n_neurons=n))
+    M = (rng.standard_normal((n, n)) * 0.04).astype(np.float32)
+    D = (rng.standard_normal((ticks, n)) * 0.1).astype(np.float32)
     runs = {"hippo Reservoir.run": lambda: res.run(U),
             "numpy sgemv loop": lambda: loop_numpy(M, D),
             "scipy sgemv loop": lambda: loop_scipy(M, D)}
@@ -109,13 +107,22 @@ def main() -> None:
         pass
     best = {k: (np.inf, np.inf) for k in runs}
     with threadpool_limits(1):
-        for _ in range(a.rounds):
+        for _ in range(rounds):
             for k, fn in runs.items():
                 w, c = time.perf_counter(), time.process_time()
                 fn()
-                w, c = (time.perf_counter() - w) / a.ticks, (time.process_time() - c) / a.ticks
+                w, c = (time.perf_counter() - w) / ticks, (time.process_time() - c) / ticks
                 best[k] = (min(best[k][0], w), min(best[k][1], c))
-    floor = c_floor(a.n, a.ticks, a.rounds)
+    return best, c_floor(n, ticks, rounds)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--n", type=int, default=600)
+    ap.add_argument("--ticks", type=int, default=15855)
+    ap.add_argument("--rounds", type=int, default=5)
+    a = ap.parse_args()
+    best, floor = measure(a.n, a.ticks, a.rounds)
     print(f"N = {a.n}, {a.ticks} ticks, 1 BLAS thread, best of {a.rounds}: µs per tick")
     print(f"  {'':26s} {'wall':>7s} {'CPU':>7s}   x floor, wall (CPU)")
     if floor is not None:

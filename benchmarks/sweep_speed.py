@@ -20,16 +20,14 @@ import time
 from hippo.sweep import grid, run_sweep
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--rounds", type=int, default=2)
-    ap.add_argument("--seeds", type=int, default=8)
-    a = ap.parse_args()
+def measure(seeds: int = 8, rounds: int = 2, *, verbose: bool = True
+            ) -> dict[int, tuple[float, float]]:
+    """Best wall seconds of the grid per worker count (1, 2), with the cells' summed seconds."""
     os.environ["HIPPO_QUIET"] = "1"
-    cells = grid("timing-demo", list(range(a.seeds)), {"delay": ["2", "7"]},
+    cells = grid("timing-demo", list(range(seeds)), {"delay": ["2", "7"]},
                  ["--quick", "--reproductions", "1"])
     best: dict[int, tuple[float, float]] = {}
-    for r in range(a.rounds):
+    for r in range(rounds):
         for workers in (1, 2):
             with tempfile.TemporaryDirectory() as tmp:
                 t0 = time.perf_counter()
@@ -37,11 +35,21 @@ def main() -> None:
                 wall = time.perf_counter() - t0
             assert res.ok and len(res.rows) == len(cells), res.failed
             busy = sum(float(row["seconds"]) for row in res.rows)
-            print(f"round {r}: {workers} worker(s) {wall:6.1f} s wall, cells {busy:6.1f} s",
-                  flush=True)
+            if verbose:
+                print(f"round {r}: {workers} worker(s) {wall:6.1f} s wall, cells {busy:6.1f} s",
+                      flush=True)
             if wall < best.get(workers, (float("inf"), 0.0))[0]:
                 best[workers] = (wall, busy)
-    print(f"{len(cells)} cells; best of {a.rounds}: 1 worker {best[1][0]:.1f} s, 2 workers "
+    return best
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--rounds", type=int, default=2)
+    ap.add_argument("--seeds", type=int, default=8)
+    a = ap.parse_args()
+    best = measure(a.seeds, a.rounds)
+    print(f"{2 * a.seeds} cells; best of {a.rounds}: 1 worker {best[1][0]:.1f} s, 2 workers "
           f"{best[2][0]:.1f} s: speed-up {best[1][0] / best[2][0]:.2f}x")
 
 

@@ -205,11 +205,12 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
     """Run ``cells`` on a Dask cluster and gather their results under ``out``.
 
     ``client``: an existing ``distributed.Client`` (else one is made: a LocalCluster of
-    ``workers`` single-threaded worker processes, default the usable cores, or the cluster at
-    ``scheduler``). ``retries``: extra attempts for a cell that raises. ``task(cell, out_dir)``
-    runs one cell and returns its metrics (default: the scenario, :func:`scenario_task`).
-    Cells already finished under ``out`` are skipped. Returns a :class:`SweepResult`; its
-    ``failed`` lists the cells that failed every attempt (also in the table).
+    ``workers`` single-threaded worker processes, default the free cores
+    (:func:`hippo._threads.free_cores`), or the cluster at ``scheduler``). ``retries``: extra
+    attempts for a cell that raises. ``task(cell, out_dir)`` runs one cell and returns its
+    metrics (default: the scenario, :func:`scenario_task`). Cells already finished under
+    ``out`` are skipped. Returns a :class:`SweepResult`; its ``failed`` lists the cells that
+    failed every attempt (also in the table).
     """
     try:
         from distributed import as_completed
@@ -234,10 +235,12 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
     if todo:
         own_client = own_cluster = None
         if client is None:
-            from hippo._threads import n_workers, usable_cores
+            from hippo._threads import n_workers
 
-            client, own_cluster = _connect(scheduler, usable_cores() if workers is None
-                                           else n_workers(workers))
+            # the one rule (hippo._threads): default workers = the free cores, as the leak
+            # sweep and the ICA restarts choose them, each worker with cores // workers BLAS
+            # threads; on busy cores that is one worker, never more threads than cores
+            client, own_cluster = _connect(scheduler, n_workers(workers))
             own_client = client
         try:
             _execute(client, todo, out, task, int(retries), result, as_completed)
@@ -405,7 +408,8 @@ def sweep_main(argv: Sequence[str]) -> int:
     ap.add_argument("--out", type=out_dir, default=None,
                     help="output folder (default out/sweep-SCENARIO)")
     ap.add_argument("--workers", type=integer(1, 1024), default=None,
-                    help="LocalCluster worker processes (default: the usable cores)")
+                    help="LocalCluster worker processes (default: the free cores, i.e. the "
+                    "usable cores less the load of other processes)")
     ap.add_argument("--scheduler", default=None, help="address of an existing Dask scheduler")
     ap.add_argument("--retries", type=integer(0, 100), default=2,
                     help="extra attempts of a failing cell")

@@ -72,6 +72,29 @@ def test_blas_budget_never_oversubscribes():
         blas_budget(0)
 
 
+def test_default_workers_follow_the_one_thread_rule(tmp_path, monkeypatch):
+    """With no ``workers`` the LocalCluster gets the free cores, as the leak sweep does: on busy
+    cores (free_cores() == 1) one worker, never more processes than the cores left free."""
+    import hippo._threads as threads
+    import hippo.sweep as sweep
+
+    asked = []
+
+    class Stop(Exception):
+        pass
+
+    def fake_connect(scheduler, workers):
+        asked.append(workers)
+        raise Stop
+
+    monkeypatch.setattr(sweep, "_connect", fake_connect)
+    for free in (1, 2):
+        monkeypatch.setattr(threads, "free_cores", lambda load=None, free=free: free)
+        with pytest.raises(Stop):
+            run_sweep(grid("x", [0], {}), tmp_path / f"f{free}", task=square_task)
+    assert asked == [1, 2]
+
+
 def test_sweep_gathers_a_table_and_resumes(tmp_path, client):
     cells = grid("demo", [0, 1, 2], {"gain": ["1", "3"]})
     res = run_sweep(cells, tmp_path, client=client, task=square_task)

@@ -19,8 +19,13 @@ Additions beyond the papers:
   climbs; ``"sparseness"``: Σ(1 - E|s|); ``"slowness"``: minus the smallest Δ(s_i) = ⟨ṡ_i²⟩,
   i.e. prefer the rotation with the slowest single unit). ICA on the same SFA outputs lands in
   different local optima, so restarts are cheap insurance; they run on parallel threads
-  (``workers``), with the same result as one after the other;
-* whitening is skipped when the input is already white (SFA outputs are, on their training data).
+  (``workers``), with the same result as one after the other; scores within ``tol`` (relative)
+  of each other tie, and the earlier restart is kept;
+* whitening is skipped when the input is already white (SFA outputs are, on their training data);
+* the expectations are sums over **chunks** of ``_CHUNK`` samples, each whitened when it is
+  used: the fit holds no array of the input's length besides the input itself (which may be
+  float32), so a fit on 10⁶ ticks needs the memory of one on 10⁴. Up to ``_CHUNK`` samples the
+  whitened input is computed once and the numbers are those of the one-array form.
 
 Outputs are unit-variance on the data the ICA was fitted on (``output_std_`` = 1), so the
 ICANN09 threshold "responds ≥ 4.5" means 4.5 training standard deviations.
@@ -92,9 +97,73 @@ def _sym_decorrelate(W: np.ndarray) -> np.ndarray:
     return (u / np.sqrt(s)) @ u.T @ W
 
 
-def _fastica_symmetric(Z: np.ndarray, W: np.ndarray, max_iter: int, tol: float
+def _mean_cov(X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Mean (d,) and covariance ``⟨(x - μ)(x - μ)ᵀ⟩`` (d, d) of ``X`` (T, d) in float64,
+    chunk by chunk."""
+    T, d = X.shape
+    if T <= _CHUNK:
+        mean = X.mean(axis=0, dtype=np.float64)
+        Xc = X - mean
+        return mean, Xc.T @ Xc / T
+    mean = np.zeros(d)
+    for t0 in range(0, T, _CHUNK):
+        mean += np.asarray(X[t0:t0 + _CHUNK], dtype=np.float64).sum(axis=0)
+    mean /= T
+    C = np.zeros((d, d))
+    for t0 in range(0, T, _CHUNK):
+        Xc = np.asarray(X[t0:t0 + _CHUNK], dtype=np.float64) - mean
+        C += Xc.T @ Xc
+    return mean, C / T
+
+
+#: samples per chunk of the ICA expectations (k x _CHUNK float64 temporaries per step)
+_CHUNK = 65536
+
+
+class _White:
+    """The whitened input ``z = whiteningᵀ(x - mean)`` of a recording ``X`` (T, d), served
+    in chunks of columns ``(k, ≤ _CHUNK)`` float64. Held whole when it is one chunk, else
+    each chunk is whitened when it is used (nothing of length T is allocated)."""
+
+    def __init__(self, X: np.ndarray, mean: np.ndarray, whitening: np.ndarray) -> None:
+        self.X, self.mean, self.V = X, mean, whitening
+        self.T = X.shape[0]
+        self.bounds = [*range(0, self.T, _CHUNK), self.T]
+        self._held = self._whiten(0, self.T) if self.T <= _CHUNK else None
+
+    def _whiten(self, t0: int, t1: int) -> np.ndarray:
+        return ((np.asarray(self.X[t0:t1], dtype=np.float64) - self.mean) @ self.V).T.copy()
+
+    def __iter__(self):
+        if self._held is not None:
+            yield self._held
+            return
+        for t0, t1 in zip(self.bounds[:-1], self.bounds[1:]):
+            yield self._whiten(t0, t1)
+
+
+def _moments(Z: _White, W: np.ndarray, beta: bool = False
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """``E{g(Wz) zᵀ}`` (k, k), ``E{(Wz)²}`` (k,) and, with ``beta``, ``E{y g(y)}`` (k,) for
+    ``g(y) = y³``: sums over the chunks of ``Z``, divided by T."""
+    k = W.shape[0]
+    gz, y2, yg = np.zeros((k, Z.V.shape[1])), np.zeros(k), np.zeros(k) if beta else None
+    for z in Z:
+        Y = W @ z
+        Y2 = Y * Y
+        gY = Y2 * Y                                   # g(y) = y³ (u*u*u: far faster than u**3)
+        gz += gY @ z.T
+        y2 += Y2.sum(axis=1)
+        if beta:
+            yg += np.einsum("ij,ij->i", gY, Y)
+    T = Z.T
+    return gz / T, y2 / T, (yg / T if beta else None)
+
+
+def _fastica_symmetric(Z: _White, W: np.ndarray, max_iter: int, tol: float
                        ) -> tuple[np.ndarray, int, bool, float]:
-    """Z: (k, T) white; W: (k, k) initial. Returns W, iterations, converged, last change.
+    """Z: the white input (k, T) in chunks; W: (k, k) initial. Returns W, iterations,
+    converged, last change.
 
     First the papers' fixed point ``W⁺ = E{g(Wz) zᵀ} - diag(E{g'(Wz)}) W`` with symmetric
     decorrelation. It can oscillate for ever when some directions are nearly Gaussian; if it has
@@ -103,22 +172,19 @@ def _fastica_symmetric(Z: np.ndarray, W: np.ndarray, max_iter: int, tol: float
     ``β = E{y g(y)}``, halving μ whenever the change has not reached a new low for 25
     iterations (down to 1/64).
     """
-    T = Z.shape[1]
     W = _sym_decorrelate(W)
     switch = min(200, max_iter // 2)
     lim = best = np.inf
     mu, since_best = 1.0, 0
     for it in range(1, max_iter + 1):
-        Y = W @ Z
-        Y2 = Y * Y
-        gY = Y2 * Y                                   # g(y) = y³ (u*u*u: far faster than u**3)
         if it <= switch:
-            W1 = _sym_decorrelate(gY @ Z.T / T - 3.0 * Y2.mean(axis=1)[:, None] * W)
+            gz, y2, _ = _moments(Z, W)
+            W1 = _sym_decorrelate(gz - 3.0 * y2[:, None] * W)
         else:
-            beta = np.einsum("ij,ij->i", gY, Y) / T   # E{y g(y)} = E{y⁴}
-            denom = 3.0 * Y2.mean(axis=1) - beta      # E{g'(y)} - β = -(excess kurtosis)
+            gz, y2, beta = _moments(Z, W, beta=True)   # beta = E{y g(y)} = E{y⁴}
+            denom = 3.0 * y2 - beta                   # E{g'(y)} - β = -(excess kurtosis)
             denom = np.where(np.abs(denom) < 1e-12, 1e-12, denom)
-            step = (gY @ Z.T / T - beta[:, None] * W) / denom[:, None]
+            step = (gz - beta[:, None] * W) / denom[:, None]
             W1 = _sym_decorrelate(W - mu * step)
         lim = float(np.max(np.abs(np.abs(np.einsum("ij,ij->i", W1, W)) - 1.0)))
         W = W1
@@ -134,9 +200,8 @@ def _fastica_symmetric(Z: np.ndarray, W: np.ndarray, max_iter: int, tol: float
     return W, max_iter, False, lim
 
 
-def _fastica_deflation(Z: np.ndarray, W: np.ndarray, max_iter: int, tol: float
+def _fastica_deflation(Z: _White, W: np.ndarray, max_iter: int, tol: float
                        ) -> tuple[np.ndarray, int, bool, float]:
-    T = Z.shape[1]
     k = W.shape[0]
     out = np.zeros_like(W)
     n_iter, converged, worst = 0, True, 0.0
@@ -147,9 +212,8 @@ def _fastica_deflation(Z: np.ndarray, W: np.ndarray, max_iter: int, tol: float
         used = 0
         while used < max_iter:
             used += 1
-            y = w @ Z
-            y2 = y * y
-            w1 = Z @ (y2 * y) / T - 3.0 * y2.mean() * w
+            gz, y2, _ = _moments(Z, w[None, :])
+            w1 = gz[0] - 3.0 * y2[0] * w
             w1 -= out[:p].T @ (out[:p] @ w1)
             w1 /= np.linalg.norm(w1)
             lim = abs(abs(float(w1 @ w)) - 1.0)
@@ -166,14 +230,31 @@ def _fastica_deflation(Z: np.ndarray, W: np.ndarray, max_iter: int, tol: float
 
 def score_outputs(S: np.ndarray, criterion: str) -> float:
     """Unsupervised quality of ICA outputs ``S`` (T, k), unit variance; higher is better."""
+    return _score_chunks([S], criterion)
+
+
+def _score_chunks(chunks, criterion: str) -> float:
+    """:func:`score_outputs` of the outputs given as consecutive row chunks ``(t, k)``."""
+    if criterion not in SCORES:
+        raise ValueError(f"unknown score {criterion!r}; choose from {SCORES}")
+    total, n, last = 0.0, 0, None
+    for S in chunks:
+        if criterion == "kurtosis":
+            S2 = S * S
+            part = (S2 * S2).sum(axis=0)
+        elif criterion == "sparseness":
+            part = np.abs(S).sum(axis=0)
+        else:
+            D = np.diff(S, axis=0) if last is None else np.diff(np.vstack([last, S]), axis=0)
+            part = (D * D).sum(axis=0)
+            last = S[-1:]
+        total = total + part
+        n += S.shape[0]
     if criterion == "kurtosis":
-        S2 = S * S
-        return float(np.sum(np.abs((S2 * S2).mean(axis=0) - 3.0)))
+        return float(np.sum(np.abs(total / n - 3.0)))
     if criterion == "sparseness":
-        return float(np.sum(1.0 - np.abs(S).mean(axis=0)))
-    if criterion == "slowness":
-        return -float(np.min(np.mean(np.diff(S, axis=0) ** 2, axis=0)))
-    raise ValueError(f"unknown score {criterion!r}; choose from {SCORES}")
+        return float(np.sum(1.0 - total / n))
+    return -float(np.min(total / (n - 1)))
 
 
 class FastICA(ParamsEstimator):
@@ -189,11 +270,12 @@ class FastICA(ParamsEstimator):
         self.params = replace(params or ICAParams(), **overrides)
 
     def fit(self, X: np.ndarray, y: None = None) -> FastICA:
-        """Estimate the unmixing of ``X`` (T, d), rows are samples."""
+        """Estimate the unmixing of ``X`` (T, d), rows are samples (float64, or float32 kept
+        as is: it is read chunk by chunk, never copied whole)."""
         X = np.asarray(X)
         if X.ndim != 2:
             raise ValueError(f"X must be a 2-D array (time, features), got shape {X.shape}")
-        X = check_finite("X", X)
+        X = check_finite("X", X, keep_float32=True)
         p = self.params
         T, d = X.shape
         k = d if p.n_components is None else int(p.n_components)
@@ -202,9 +284,7 @@ class FastICA(ParamsEstimator):
         if T < 2:
             raise ValueError(f"ICA needs at least 2 samples, got {T}")
         self.n_features_in_ = d
-        self.mean_ = X.mean(axis=0)
-        Xc = X - self.mean_
-        C = Xc.T @ Xc / T
+        self.mean_, C = _mean_cov(X)
         white = (np.max(np.abs(C - np.eye(d))) < 1e-6
                  and np.max(np.abs(self.mean_)) < 1e-6 and k == d)
         if p.whiten is False or (p.whiten == "auto" and white):
@@ -215,12 +295,15 @@ class FastICA(ParamsEstimator):
         else:
             ev, E = scipy.linalg.eigh(C, check_finite=False)
             ev, E = ev[::-1][:k], E[:, ::-1][:, :k]
+            # an eigenvector's sign is arbitrary (rounding in C can flip it): make each
+            # one's largest entry positive, so the whitened input does not hang on rounding
+            E = E * np.sign(E[np.argmax(np.abs(E), axis=0), np.arange(k)])
             if ev[-1] <= 1e-12 * max(ev[0], 1e-300):
                 raise ValueError(f"the ICA input has fewer than n_ica={k} non-degenerate "
                                  "directions")
             self.whitening_ = E / np.sqrt(ev)
             self.whitened_ = True
-        Z = (Xc @ self.whitening_).T.copy()  # (k, T)
+        Z = _White(X, self.mean_, self.whitening_)  # z = whiteningᵀ(x - mean), (k, T) in chunks
 
         rng = np.random.default_rng(p.seed)
         solver = _fastica_symmetric if p.algorithm == "symmetric" else _fastica_deflation
@@ -228,14 +311,17 @@ class FastICA(ParamsEstimator):
 
         def restart(W0: np.ndarray) -> tuple[float, np.ndarray, int, bool, float]:
             W, n_iter, ok, lim = solver(Z, W0, int(p.max_iter), float(p.tol))
-            return score_outputs((W @ Z).T, p.score), W, n_iter, ok, lim
+            return _score_chunks(((W @ z).T for z in Z), p.score), W, n_iter, ok, lim
 
         best = None
         scores, failed = [], 0
         for s, W, n_iter, ok, lim in parallel_map(restart, starts, p.workers):
             failed += not ok
             scores.append(s)
-            if best is None or s > best[0]:
+            # restarts that reach the same optimum (up to a permutation) tie to within the
+            # solver's tolerance: a later restart must beat the kept one by more than ``tol``
+            # (relative), so the choice does not hang on the order of a sum
+            if best is None or s > best[0] + float(p.tol) * abs(best[0]):
                 best = (s, W, n_iter, ok, lim)
         score, W, n_iter, ok, lim = best
         if failed:
@@ -245,8 +331,11 @@ class FastICA(ParamsEstimator):
                 f"{n_iter} iterations, last change {lim:.2e} (tol {p.tol:g})",
                 ICAConvergenceWarning, stacklevel=2)
         # sign: peak response positive
-        S = W @ Z
-        flip = np.abs(S.min(axis=1)) > np.abs(S.max(axis=1))
+        lo, hi = np.full(k, np.inf), np.full(k, -np.inf)
+        for z in Z:
+            S = W @ z
+            lo, hi = np.minimum(lo, S.min(axis=1)), np.maximum(hi, S.max(axis=1))
+        flip = np.abs(lo) > np.abs(hi)
         W = np.where(flip[:, None], -W, W)
         self.rotation_ = W
         self.components_ = W @ self.whitening_.T

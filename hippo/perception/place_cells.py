@@ -92,6 +92,8 @@ class InputRangeWarning(RuntimeWarning):
 _HARVEST_CHUNK = 2048
 #: a fit holds the reservoir states up to this size, and streams them beyond (``fit(stream=)``)
 _HOLD_BYTES = 256 * 2**20
+#: rows per chunk when the ICA outputs' statistics are taken
+_OUT_CHUNK = 65536
 #: leak configurations harvested together by ``fit_leak_sweep``
 _SWEEP_BATCH = 16
 
@@ -372,7 +374,8 @@ class RCSFAICA(ParamsEstimator):
         self.sfa_ = SFA(p.sfa_params())
         self.sfa_._prepare_shape(Ud.shape[0] - w, n_u + res.n_neurons)
         self.sfa_._solve(parts, Ud.shape[0] - w)
-        Y = np.empty((Ud.shape[0] - w, int(p.n_sfa)))
+        # the ICA input, the only array of length T: n_sfa float32 columns (16 bytes a tick)
+        Y = np.empty((Ud.shape[0] - w, int(p.n_sfa)), dtype=np.float32)
         with single_threaded_blas():  # the same chunks from the same states: the same states
             for t0, t1, x0 in chunks:
                 if t0 < w:
@@ -399,10 +402,8 @@ class RCSFAICA(ParamsEstimator):
         """With SFA fitted: ICA on its training outputs ``Y`` (T, n_sfa), then the readout."""
         p = self.params
         self.sfa_slowness_ = self.sfa_.slowness_.copy()
-        self.ica_ = FastICA(p.ica_params())
-        S = self.ica_.fit_transform(Y)
-        self.output_std_ = S.std(axis=0)
-        self.output_peak_ = np.percentile(S, 99.9, axis=0)
+        self.ica_ = FastICA(p.ica_params()).fit(Y)
+        self.output_std_, self.output_peak_ = _output_stats(self.ica_, Y)
         self._compile()
         self.reset_state()
         return self
@@ -650,6 +651,22 @@ class RCSFAICA(ParamsEstimator):
                if p.use_reservoir else "no reservoir")
         return (f"RCSFAICA(n_inputs={p.n_inputs}, {res}, n_sfa={p.n_sfa}, n_ica={p.n_ica}, "
                 f"downsample={p.downsample}, seed={p.seed})")
+
+
+def _output_stats(ica: FastICA, Y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Standard deviation and 99.9th percentile of each ICA output on its training input
+    ``Y`` (T, n_sfa), one output at a time (one float64 column of length T alive, not the
+    whole (T, n_ica) output)."""
+    k = ica.components_.shape[0]
+    std, peak = np.empty(k), np.empty(k)
+    col = np.empty(Y.shape[0])
+    for j in range(k):
+        for t0 in range(0, Y.shape[0], _OUT_CHUNK):
+            y = np.asarray(Y[t0:t0 + _OUT_CHUNK], dtype=np.float64)
+            col[t0:t0 + _OUT_CHUNK] = (y - ica.mean_) @ ica.components_[j]
+        std[j] = col.std()
+        peak[j] = np.percentile(col, 99.9, overwrite_input=True)
+    return std, peak
 
 
 def fit_leak_sweep(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams | None = None,

@@ -107,7 +107,13 @@ class PlacePrototypes(ParamsEstimator):
         d = self.centres_.shape[1]  # type: ignore[union-attr]
         if np.shape(y) != (d,):
             raise ValueError(f"place-cell output y must have shape ({d},), got {np.shape(y)}")
-        a = self.transform(y)[0]
+        # the closed loop's tick: one finiteness check, the centres' squared norms kept from
+        # the previous tick (they change only when a prototype is recruited)
+        y2 = _real("place-cell output y", y)[None]
+        C = self.centres_
+        if getattr(self, "_cc_of", None) is not C:
+            self._cc, self._cc_of = (C * C).sum(1), C  # type: ignore[operator]
+        a = np.exp(-_sqdist(y2, C, self._cc) / (2 * self.sigma_**2))[0]  # type: ignore[operator]
         p = self.params
         if (p.recruit_threshold > 0 and a.max() < p.recruit_threshold
                 and len(self.centres_) < p.max_prototypes):  # type: ignore[arg-type]
@@ -167,6 +173,9 @@ def _real(name: str, Y: object) -> np.ndarray:
     return check_finite(name, arr)
 
 
-def _sqdist(Y: np.ndarray, C: np.ndarray) -> np.ndarray:
-    """Squared Euclidean distances between rows of ``Y`` and rows of ``C``."""
-    return np.maximum((Y * Y).sum(1)[:, None] - 2 * Y @ C.T + (C * C).sum(1)[None], 0.0)
+def _sqdist(Y: np.ndarray, C: np.ndarray, cc: np.ndarray | None = None) -> np.ndarray:
+    """Squared Euclidean distances between rows of ``Y`` and rows of ``C`` (``cc``: the rows
+    of ``C``'s squared norms, if already known)."""
+    if cc is None:
+        cc = (C * C).sum(1)
+    return np.maximum((Y * Y).sum(1)[:, None] - 2 * Y @ C.T + cc[None], 0.0)

@@ -268,11 +268,16 @@ class SFA(ParamsEstimator):
         return self._sign(self._project(X))
 
     def _sign(self, y: np.ndarray) -> np.ndarray:
-        """Sign-normalise the units on their training outputs ``y`` (positive skew); returns
-        the signed outputs."""
-        sign = np.where(np.mean(y ** 3, axis=0) < 0, -1.0, 1.0)
+        """Sign-normalise the units on their training outputs ``y`` (positive skew, ``⟨y³⟩``
+        summed over chunks of 65,536 rows in float64); flips ``y`` in place and returns it."""
+        cube = np.zeros(y.shape[1])
+        for t0 in range(0, y.shape[0], 65536):
+            c = np.asarray(y[t0:t0 + 65536], dtype=np.float64)
+            cube += (c ** 3).sum(axis=0)
+        sign = np.where(cube / y.shape[0] < 0, -1.0, 1.0)
         self.W_ = self.W_ * sign
-        return y * sign
+        y *= sign.astype(y.dtype)
+        return y
 
     def _solve(self, parts: list[SFAMoments], T: int) -> None:
         """The slow directions ``W_`` (before :meth:`_sign`) from the moments of ``T`` samples."""

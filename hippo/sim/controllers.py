@@ -149,13 +149,20 @@ class ObstacleAvoidance:
         self.geom = _SensorGeometry(sensors, robot or RobotParams())
         self.speed = speed if speed is not None else self.geom.robot.speed_max
         self._turn = 0.0
+        #: the forward-facing rays (within ±100°) that :meth:`boxed_in` reads
+        self._forward = np.flatnonzero(np.abs(self.geom.angles) <= np.deg2rad(100)).tolist()
 
     def boxed_in(self, obs: Observation) -> bool:
         """True when every forward-facing ray (within ±100°) reads an obstacle within
-        ``range_min + stop`` cm (readings saturate at ``range_min``: closer reads the same)."""
-        d = self.geom.distances(obs.ir)
-        fwd = np.abs(self.geom.angles) <= np.deg2rad(100)
-        return bool(np.all(d[fwd] <= self.geom.model.range_min + self.params.stop))
+        ``range_min + stop`` cm (readings saturate at ``range_min``: closer reads the same).
+
+        Asked twice a tick (the brain's occlusion test, the motor's stop) on 8 numbers: plain
+        float arithmetic over the forward rays, the same numbers as the array form."""
+        m = self.geom.model
+        lo, span = m.range_min, m.range_max - m.range_min
+        limit = lo + self.params.stop
+        ir = obs.ir.tolist() if isinstance(obs.ir, np.ndarray) else list(obs.ir)
+        return all(lo + ir[i] * span <= limit for i in self._forward)
 
     def modulate(self, v: float, omega: float, obs: Observation) -> tuple[float, float]:
         """Blend a desired motion with turning away from what is ahead.
