@@ -142,6 +142,42 @@ def numbers(count: int | tuple[int, int] | None = None, lo: float | None = None,
     return parse
 
 
+def points(count: tuple[int, int], unit: str = "") -> Callable[[str], list[tuple[float, float]]]:
+    """Points ``'x,y;x,y;...'`` (between ``count[0]`` and ``count[1]`` of them), finite
+    numbers."""
+    allowed = (f"{count[0]} to {count[1]} points 'x,y' separated by ';'"
+               + (f" ({unit})" if unit else ""))
+
+    def parse(text: str) -> list[tuple[float, float]]:
+        out = []
+        for part in (p for p in text.split(";") if p.strip()):
+            xy = part.split(",")
+            try:
+                x, y = (float(v) for v in xy)
+            except ValueError:
+                raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}") from None
+            if not (math.isfinite(x) and math.isfinite(y)):
+                raise argparse.ArgumentTypeError(f"got {text!r}; needs finite numbers")
+            out.append((x, y))
+        if not count[0] <= len(out) <= count[1]:
+            raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}")
+        return out
+
+    parse.__name__ = "points"
+    return parse
+
+
+def snapshot_dir(text: str) -> Path:
+    """A folder written by :func:`hippo.snapshot.save_snapshot` (its manifest is there)."""
+    path = Path(text).expanduser()
+    if not path.is_dir():
+        raise argparse.ArgumentTypeError(f"{text!r} is not a folder")
+    if not (path / "manifest.json").is_file():
+        raise argparse.ArgumentTypeError(f"{text!r} holds no saved robot (no manifest.json; "
+                                         "write one with --save)")
+    return path
+
+
 def sfa_cutoff(text: str) -> float | str:
     """The SFA whitening cutoff: a number in (0, 1), or ``auto``."""
     if text.strip() == "auto":

@@ -140,17 +140,19 @@ def plot_waits_table(rows: Sequence[Mapping[str, Any]]) -> tuple[Figure, Axes]:
 
 
 def plot_patrol(out: Path, arena: Arena, agent: Agent, arrays: Mapping[str, np.ndarray],
-                rows: Sequence[Mapping[str, Any]]) -> list[Path]:
+                rows: Sequence[Mapping[str, Any]],
+                checkpoints: Sequence[Sequence[float]] | None = None) -> list[Path]:
     """Write the patrol figures into ``out`` (HIREL Fig. 7a, 7b and Table I); returns their
-    paths."""
+    paths. ``checkpoints`` default to the arena's landmarks ``checkpoint-1..3``."""
+    if checkpoints is None:
+        checkpoints = [arena.landmarks[f"checkpoint-{k}"] for k in (1, 2, 3)]
     fig_b, ax = plt.subplots(figsize=(7, 5.5), layout="constrained")
     draw_arena(arena, ax, locations=False)
     for phase, colour, label in ((1, "k", "taught (leash)"), (4, "tab:blue", "reproduced")):
         m = arrays["phase"] == phase
         ax.plot(arrays["x"][m], arrays["y"][m], color=colour, lw=1.2 if phase == 1 else 0.6,
                 alpha=1.0 if phase == 1 else 0.6, label=label)
-    for k in (1, 2, 3):
-        x, y = arena.landmarks[f"checkpoint-{k}"]
+    for k, (x, y) in enumerate(checkpoints, start=1):
         ax.plot(x, y, "s", color="tab:red", ms=9)
         ax.annotate(str(k), (x, y), xytext=(5, 5), textcoords="offset points", color="tab:red")
     ax.legend(loc="upper right", fontsize=8)

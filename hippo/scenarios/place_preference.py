@@ -29,11 +29,13 @@ from enum import IntEnum
 import numpy as np
 
 from hippo.agent import Agent, AgentParams
-from hippo.cli_args import add_place_cells, integer, number, probability
+from hippo.cli_args import add_place_cells, integer, number, out_dir, probability, snapshot_dir
 from hippo.cognitive_map import DriveParams, PlannerParams
+from hippo.io import CorruptFileError
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
 from hippo.sim import World, arenas
+from hippo.snapshot import load_snapshot, save_snapshot
 from hippo.tasks import (
     PLACE_STATES,
     Experimenter,
@@ -80,6 +82,56 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="trials start facing along the corridor in the direction the robot "
                              "explored (its place cells are direction-specific), or with the "
                              "heading it had when picked up")
+    parser.add_argument("--save", type=out_dir, default=None,
+                        help="write the trained robot (after exploration, map learning and "
+                             "teaching: place cells, states, timing, map, drives, and the world "
+                             "it stands in) into this folder as a hippo snapshot")
+    parser.add_argument("--load", type=snapshot_dir, default=None,
+                        help="skip exploration, map learning and teaching: run the trials on a "
+                             "robot written with --save (its seed, place cells and exploration "
+                             "come from the snapshot)")
+
+
+def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
+    """--load: a readable place-preference snapshot, and not together with --save."""
+    args.loaded = None
+    if getattr(args, "load", None) is None:
+        return
+    if getattr(args, "save", None) is not None:
+        parser.error("argument --save: not allowed with --load (the loaded robot is already "
+                     "saved)")
+    try:
+        args.loaded = _load_robot(args.load)
+    except (CorruptFileError, ValueError, TypeError) as e:
+        parser.error(f"argument --load: {args.load}: {' '.join(str(e).split())}")
+
+
+#: what a saved place-preference robot holds, beside the agent, the world and the observation
+_META = ("seed", "place_cells", "explore_min", "explore_rho", "quick")
+
+
+def _save_robot(folder, s: Session, meta: dict) -> None:
+    """The agent, its world (the teacher detached while saving: it is idle between phases)
+    and the last observation, with what the run was."""
+    teacher = s.teacher
+    s.world.detach(teacher)
+    try:
+        save_snapshot({"scenario": "place-preference", "meta": meta, "agent": s.agent,
+                       "world": s.world, "obs": s.obs}, folder)
+    finally:
+        s.world.attach(teacher)
+
+
+def _load_robot(folder) -> dict:
+    state = load_snapshot(folder, dict)
+    if state.get("scenario") != "place-preference":
+        raise ValueError(f"a snapshot of {state.get('scenario')!r}, not of place-preference")
+    if not isinstance(state.get("agent"), Agent) or not isinstance(state.get("world"), World):
+        raise ValueError("the snapshot holds no agent and world")
+    meta = state.get("meta")
+    if not isinstance(meta, dict) or any(k not in meta for k in _META):
+        raise ValueError(f"the snapshot's meta must hold {', '.join(_META)}")
+    return state
 
 
 def run(args: argparse.Namespace) -> dict:
@@ -88,6 +140,13 @@ def run(args: argparse.Namespace) -> dict:
     if args.delay <= 0 or not math.isfinite(args.delay):
         raise SystemExit(f"--delay must be a positive number of seconds, got {args.delay}")
     quick = bool(args.quick)
+    loaded = getattr(args, "loaded", None)
+    if loaded is None and getattr(args, "load", None) is not None:
+        loaded = _load_robot(args.load)
+    if loaded is not None:  # the robot's own history, not this command line's
+        seed, place_cells = int(loaded["meta"]["seed"]), loaded["meta"]["place_cells"]
+    else:
+        place_cells = args.place_cells
     # --quick explores 20 simulated minutes instead of 40 (seeds 0 and 1, learned place
     # cells: 4 of 4 rewarded trials each, as with 40)
     explore_min = min(args.explore_min, 20.0) if quick else args.explore_min
@@ -96,41 +155,16 @@ def run(args: argparse.Namespace) -> dict:
     n_ext = min(args.extinction, 2) if quick else args.extinction
     units = min(args.units, 16) if quick else args.units
     arena = arenas.goal_arena()
-    world = World(arena, sensors="ir8", seed=seed)
-    dt = world.dt
     t0 = time.perf_counter()
-
-    # 1. exploration: place cells from the robot's own sensors, then the map
-    log = Log()
-    tour = explore(world, round(explore_min * 60 / dt), args.explore_rho, seed, log)
-    places = make_places(args.place_cells, arena, tour.sensors, units, seed, args.places)
-    fit_s = time.perf_counter() - t0
-    drive = DriveParams(epsilon=0.02, learning_rate=0.5)
-    params = AgentParams(states=PLACE_STATES, explore_rho=args.explore_rho,
-                         planner=PlannerParams(w=0.9, noise=0.01, exploration_threshold=0.3))
-    agent = Agent(places, drives={"sound": drive}, params=params, sensors=world.sensors,
-                  robot=world.robot, seed=seed)
-    learn_map(agent, tour)
-    s = Session(world, agent, log, obs=tour[-1])
-
-    # 2. teaching: leash to the goal, block, sound after the delay
-    goal = arena.landmarks["goal"]
+    if loaded is None:
+        s, exp, fit_s = _learn(args, arena, seed, explore_min, n_teach, units)
+    else:
+        explore_min = loaded["meta"]["explore_min"]
+        s = Session(loaded["world"], loaded["agent"], Log(), obs=loaded["obs"])
+        exp, fit_s = Experimenter(s.teacher, args.delay), 0.0
+    world, agent, dt = s.world, s.agent, s.world.dt
+    places = agent.places
     zone = arena.zones[0].rect
-    exp = Experimenter(s.teacher, args.delay)
-    s.phase = Phase.TEACHING
-    with Progress(n_teach, "teaching") as bar:
-        for k in range(n_teach):
-            s.trial = k
-            # start each guided trial from outside the zone, so entering it is an event
-            s.run(int(120 / dt), until=lambda o: o.floor == 0)
-            _, path = arena.shortest_path(s.truth.pose[:2], goal)
-            s.teacher.lead(path)
-            exp.reset()
-            s.run(3000, until=lambda o: not s.teacher.leading)
-            s.teacher.block(args.delay + 2.0)
-            s.run(int((args.delay + 2.0) / dt) + 5, until=exp)
-            s.run(int(30 / dt))  # explore again
-            bar.update()
 
     # 3-4. rewarded and extinction trials from varied start places
     results = []
@@ -190,7 +224,8 @@ def run(args: argparse.Namespace) -> dict:
     ratios = [r["path_cm"] / r["shortest_cm"] for r in rew
               if r.get("success") and "path_cm" in r and r["shortest_cm"] > 0]
     metrics = {
-        "place_cells": args.place_cells, "seed": seed, "delay_s": args.delay,
+        "place_cells": place_cells, "seed": seed, "delay_s": args.delay,
+        "loaded_from": str(args.load) if loaded is not None else None,
         "start_facing": args.start_facing,
         "quick": quick, "explore_min": explore_min, "place_units": places.n_units,
         "rewarded_trials": len(rew),
@@ -215,7 +250,7 @@ def run(args: argparse.Namespace) -> dict:
     plot_place_preference(out, arena, agent, arrays, results, args.delay)
     resume = metrics["extinction_resume_delays_s"]
     write_metrics(out, metrics, summary=(
-        f"place preference ({args.place_cells} place cells): {metrics['rewarded_successes']} "
+        f"place preference ({place_cells} place cells): {metrics['rewarded_successes']} "
         f"of {metrics['rewarded_trials']} rewarded trials reached the goal, stopped and waited "
         f"for the sound; extinction: stopped in {metrics['extinction_stops']} of "
         f"{metrics['extinction_trials']} trials and moved on "
@@ -223,6 +258,51 @@ def run(args: argparse.Namespace) -> dict:
         + (f"; path {metrics['path_length_ratio']:.2f} x the shortest"
            if metrics["path_length_ratio"] is not None else "")))
     return metrics
+
+
+def _learn(args: argparse.Namespace, arena, seed: int, explore_min: float, n_teach: int,
+           units: int) -> tuple[Session, Experimenter, float]:
+    """Phases 1-2: exploration (place cells, then the map) and teaching; with --save, the
+    trained robot is written. Returns the session, the experimenter and the fit's seconds."""
+    world = World(arena, sensors="ir8", seed=seed)
+    dt = world.dt
+    t0 = time.perf_counter()
+    # 1. exploration: place cells from the robot's own sensors, then the map
+    log = Log()
+    tour = explore(world, round(explore_min * 60 / dt), args.explore_rho, seed, log)
+    places = make_places(args.place_cells, arena, tour.sensors, units, seed, args.places)
+    fit_s = time.perf_counter() - t0
+    drive = DriveParams(epsilon=0.02, learning_rate=0.5)
+    params = AgentParams(states=PLACE_STATES, explore_rho=args.explore_rho,
+                         planner=PlannerParams(w=0.9, noise=0.01, exploration_threshold=0.3))
+    agent = Agent(places, drives={"sound": drive}, params=params, sensors=world.sensors,
+                  robot=world.robot, seed=seed)
+    learn_map(agent, tour)
+    s = Session(world, agent, log, obs=tour[-1])
+
+    # 2. teaching: leash to the goal, block, sound after the delay
+    goal = arena.landmarks["goal"]
+    exp = Experimenter(s.teacher, args.delay)
+    s.phase = Phase.TEACHING
+    with Progress(n_teach, "teaching") as bar:
+        for k in range(n_teach):
+            s.trial = k
+            # start each guided trial from outside the zone, so entering it is an event
+            s.run(int(120 / dt), until=lambda o: o.floor == 0)
+            _, path = arena.shortest_path(s.truth.pose[:2], goal)
+            s.teacher.lead(path)
+            exp.reset()
+            s.run(3000, until=lambda o: not s.teacher.leading)
+            s.teacher.block(args.delay + 2.0)
+            s.run(int((args.delay + 2.0) / dt) + 5, until=exp)
+            s.run(int(30 / dt))  # explore again
+            bar.update()
+
+    if getattr(args, "save", None) is not None:
+        _save_robot(args.save, s, {"seed": seed, "place_cells": args.place_cells,
+                                   "explore_min": explore_min,
+                                   "explore_rho": args.explore_rho, "quick": bool(args.quick)})
+    return s, exp, fit_s
 
 
 def _learned_reward_delay(agent: Agent) -> float | None:

@@ -100,6 +100,13 @@ class World:
             self._interventions.append(intervention)
         self.teacher = intervention
 
+    def detach(self, intervention: Intervention) -> None:
+        """Stop ``intervention`` acting on the world (the inverse of :meth:`attach`)."""
+        if intervention in self._interventions:
+            self._interventions.remove(intervention)
+        if self.teacher is intervention:
+            self.teacher = self._interventions[-1] if self._interventions else None
+
     # -- snapshots (hippo.snapshot) ----------------------------------------------------------
     def __snapshot_state__(self) -> dict[str, Any]:
         """The world's whole state for :func:`hippo.snapshot.save_snapshot`: the robot body's

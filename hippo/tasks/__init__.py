@@ -7,8 +7,9 @@
   (``explore.py``) — the robot's own tour, the place cells fitted on it, the map learned
   from it.
 - :class:`Experimenter` (``teaching.py``) — the reward sound after a stop in a zone.
-- :class:`Route`, :class:`LapCounter`, :class:`AngleLaps`, :func:`passes`, :func:`stops`
-  (``routes.py``) — progress along a route, laps, checkpoint passes and stops.
+- :class:`Route`, :class:`LapCounter`, :class:`AngleLaps`, :func:`progress_along`,
+  :func:`route_passes`, :func:`passes`, :func:`stops` (``routes.py``) — routes through an
+  arena's checkpoints, progress along them, laps, checkpoint passes and stops.
 - :class:`Log`, :func:`event_arrays`, :func:`enum_names` (``log.py``) — the per-tick log and
   its files.
 
@@ -17,12 +18,20 @@ A task is a short phase script on these (see ``scenarios/patrol_square.py``).
 
 from hippo.tasks.explore import PAUSE_RATE, PLACE_STATES, Tour, explore, learn_map, make_places
 from hippo.tasks.log import Log, enum_names, event_arrays
-from hippo.tasks.routes import AngleLaps, LapCounter, Route, passes, stops
+from hippo.tasks.routes import (
+    AngleLaps,
+    LapCounter,
+    Route,
+    passes,
+    progress_along,
+    route_passes,
+    stops,
+)
 from hippo.tasks.session import Session
 from hippo.tasks.teaching import Experimenter
 
 __all__ = [
     "PAUSE_RATE", "PLACE_STATES", "AngleLaps", "Experimenter", "LapCounter", "Log", "Route",
     "Session", "Tour", "enum_names", "event_arrays", "explore", "learn_map", "make_places",
-    "passes", "stops",
+    "passes", "progress_along", "route_passes", "stops",
 ]

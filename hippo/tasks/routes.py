@@ -1,26 +1,35 @@
 """Routes and checkpoints: where the robot is along a route, laps, passes and stops.
 
-- :class:`Route` — a polyline of waypoints (closed for a loop): :meth:`Route.progress` is the
-  distance along the route of the point nearest to a position; :meth:`Route.leg` the
-  waypoints from one position to another along the route's direction; :meth:`Route.loop_from`
-  a whole loop starting ahead of a pose.
-- :class:`LapCounter` — laps by route progress (unwrapped over the loop's length).
+- :class:`Route` — a polyline of waypoints (closed for a loop): :meth:`Route.through` builds
+  one from an arena's shortest paths between checkpoints; :meth:`Route.progress` is the
+  distance along the route of the point nearest to a position (:meth:`Route.progress_near`
+  the same, searched only near a previous progress, for routes that run over themselves);
+  :meth:`Route.at` the point and direction at a progress; :meth:`Route.leg` the waypoints
+  from one position to another along the route's direction; :meth:`Route.loop_from` a whole
+  loop starting ahead of a pose.
+- :class:`LapCounter` — laps by route progress (unwrapped over the loop's length), tracked
+  from tick to tick.
 - :class:`AngleLaps` — laps by the angle swept around a point inside the loop.
-- :func:`passes`, :func:`stops` — from a run's per-tick arrays (``Log.arrays()``): the passes
-  by a checkpoint, the stops the agent chose to make near checkpoints.
+- :func:`progress_along`, :func:`route_passes`, :func:`passes`, :func:`stops` — from a run's
+  per-tick arrays (``Log.arrays()``): unwrapped progress along a route, the passes by a
+  checkpoint along the route (one per lap) or by distance, the stops the agent chose to make
+  near checkpoints.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from itertools import pairwise
+from typing import Any
 
 import numpy as np
 
 from hippo._checks import check_finite
 from hippo.types import Mode, wrap_angle
 
-__all__ = ["AngleLaps", "LapCounter", "Route", "passes", "stops"]
+__all__ = ["AngleLaps", "LapCounter", "Route", "passes", "progress_along", "route_passes",
+           "stops"]
 
 
 class Route:
@@ -41,6 +50,24 @@ class Route:
         self._len = seg
         self.length = float(seg.sum())
 
+    @classmethod
+    def through(cls, arena: Any, points: Sequence[Sequence[float]], *, radius: float = 3.7,
+                clearance: float = 3.0) -> Route:
+        """The closed route through ``points`` in order: the arena's shortest path (for a disc
+        of ``radius`` cm, keeping ``clearance`` cm more from walls where it can) from each point
+        to the next and from the last back to the first. Where two points are joined by one
+        corridor only, the route runs along it both ways."""
+        pts = [tuple(map(float, p)) for p in points]
+        if len(pts) < 2:
+            raise ValueError(f"a route needs at least two points, got {len(pts)}")
+        wps: list[tuple[float, float]] = []
+        for a, b in pairwise([*pts, pts[0]]):
+            _, path = arena.shortest_path(a, b, radius, clearance=clearance)
+            if not path:
+                raise ValueError(f"no path from {a} to {b} in arena {arena.name!r}")
+            wps.extend([a, *path[1:-1]])
+        return cls(wps, closed=True)
+
     @property
     def waypoints(self) -> list[tuple[float, float]]:
         return [(float(x), float(y)) for x, y in self.points]
@@ -54,6 +81,48 @@ class Route:
         gap = np.hypot(p[:, 0] - u * self._d[:, 0], p[:, 1] - u * self._d[:, 1])
         k = int(np.argmin(gap))
         return float(self._s0[k] + u[k] * self._len[k])
+
+    def progress_near(self, x: float, y: float, near: float, window: float = 30.0) -> float:
+        """Like :meth:`progress`, but only the part of the route within ``window`` cm (along
+        it, either way) of progress ``near`` is searched: where a route runs along a corridor
+        twice (out and back), the robot stays on the stretch it is on: of the points of that
+        part, the one nearest to ``(x, y)`` wins, with 0.2 cm of distance added per cm of
+        progress away from ``near`` (where two stretches meet, the one it is on). If no point
+        of that part lies within ``window`` cm of ``(x, y)`` (the robot was carried, or not tracked
+        for a while), the whole route is searched."""
+        dense = self._dense()
+        gap = (dense[:, 0] - near + self.length / 2) % self.length - self.length / 2 \
+            if self.closed else dense[:, 0] - near
+        cand = dense[np.abs(gap) <= window]
+        if cand.size == 0:
+            return self.progress(x, y)
+        d = np.hypot(cand[:, 1] - x, cand[:, 2] - y)
+        if d.min() > window:
+            return self.progress(x, y)
+        # where two stretches meet (a turn-around), the one nearer in progress wins ties
+        k = int(np.argmin(d + 0.2 * np.abs(gap[np.abs(gap) <= window])))
+        return float(cand[k, 0])
+
+    def _dense(self) -> np.ndarray:
+        """(progress, x, y) every 0.5 cm along the route (computed once)."""
+        if getattr(self, "_dense_pts", None) is None:
+            s = np.arange(0.0, self.length, 0.5)
+            self._dense_pts = np.column_stack([s, self._points_at(s)])
+        return self._dense_pts
+
+    def _points_at(self, s: np.ndarray) -> np.ndarray:
+        s = np.mod(s, self.length) if self.closed else np.clip(s, 0.0, self.length)
+        k = np.clip(np.searchsorted(self._s0, s, side="right") - 1, 0, len(self._s0) - 1)
+        u = (s - self._s0[k]) / np.maximum(self._len[k], 1e-12)
+        return self._a[k] + u[:, None] * self._d[k]
+
+    def at(self, s: float) -> tuple[float, float, float]:
+        """``(x, y, heading)``: the point ``s`` cm along the route (modulo its length if
+        closed) and the direction of travel there (radians)."""
+        x, y = self._points_at(np.array([float(s)]))[0]
+        ss = float(np.mod(s, self.length)) if self.closed else float(s)
+        k = int(np.clip(np.searchsorted(self._s0, ss, side="right") - 1, 0, len(self._s0) - 1))
+        return float(x), float(y), math.atan2(float(self._d[k, 1]), float(self._d[k, 0]))
 
     def sample(self, spacing: float) -> list[tuple[float, float]]:
         """Points every ``spacing`` cm along the route from its first waypoint (e.g. the
@@ -94,18 +163,43 @@ class Route:
 
 class LapCounter:
     """Laps along a closed :class:`Route`, from the change of route progress between updates
-    (a change of more than half the loop counts the short way round)."""
+    (a change of more than half the loop counts the short way round).
 
-    def __init__(self, route: Route) -> None:
+    After the first update, progress is searched within ``window`` cm of the last one
+    (:meth:`Route.progress_near`), so a route that runs along a corridor both ways is followed
+    stretch by stretch; :meth:`reset` after the robot was carried elsewhere. ``travelled`` is
+    the unwrapped progress in cm (``turns`` × the route's length, from the first update's
+    progress); ``progress`` the progress of the last update."""
+
+    def __init__(self, route: Route, window: float = 30.0) -> None:
         if not route.closed:
             raise ValueError("laps need a closed route")
-        self.route = route
+        if not window > 0:
+            raise ValueError(f"window must be > 0 cm, got {window!r}")
+        self.route, self.window = route, float(window)
         self._s: float | None = None
         self.turns = 0.0
+        self.start: float | None = None
+
+    @property
+    def progress(self) -> float | None:
+        return self._s
+
+    @property
+    def travelled(self) -> float:
+        return self.turns * self.route.length
+
+    def reset(self) -> None:
+        """Forget where the robot was (the next update searches the whole route)."""
+        self._s = None
 
     def update(self, x: float, y: float) -> float:
-        s = self.route.progress(x, y)
-        if self._s is not None:
+        if self._s is None:
+            s = self.route.progress(x, y)
+            if self.start is None:
+                self.start = s
+        else:
+            s = self.route.progress_near(x, y, self._s, self.window)
             L = self.route.length
             self.turns += ((s - self._s + L / 2) % L - L / 2) / L
         self._s = s
@@ -144,6 +238,41 @@ def passes(arrays: dict, centre: Sequence[float], *, phase: int, radius: float =
         else:
             runs.append([int(i), int(i) + 1])
     return [(a, b) for a, b in runs if a != idx[0]]
+
+
+def progress_along(route: Route, x: np.ndarray, y: np.ndarray, window: float = 30.0
+                   ) -> np.ndarray:
+    """Unwrapped progress (cm) along closed ``route`` of the positions ``(x[i], y[i])``, tracked
+    from the first (its progress on the route) as :class:`LapCounter` does."""
+    laps = LapCounter(route, window)
+    out = np.empty(len(x))
+    for i, (a, b) in enumerate(zip(x, y, strict=True)):
+        laps.update(float(a), float(b))
+        out[i] = laps.start + laps.travelled  # type: ignore[operator]
+    return out
+
+
+def route_passes(arrays: dict, route: Route, checkpoint: Sequence[float], *, phase: int,
+                 radius: float = 30.0) -> list[tuple[int, int]]:
+    """Index ranges ``[a, b)`` of the passes by ``checkpoint`` during ``phase``, by progress
+    along ``route``: each time the robot's progress comes within ``radius`` cm (along the
+    route) of the checkpoint's, one pass per lap, however the robot dawdles or wiggles there.
+    A pass under way when the phase starts, or not finished when it ends, does not count."""
+    idx = np.flatnonzero(arrays["phase"] == int(phase))
+    if idx.size == 0:
+        return []
+    p = progress_along(route, arrays["x"][idx], arrays["y"][idx])
+    L = route.length
+    s_k = route.progress(*checkpoint[:2])
+    out = []
+    n0 = math.floor((p.min() - s_k - radius) / L)
+    n1 = math.ceil((p.max() - s_k + radius) / L)
+    for n in range(n0, n1 + 1):
+        near = np.flatnonzero(np.abs(p - (s_k + n * L)) < radius)
+        if near.size == 0 or near[0] == 0 or near[-1] == len(p) - 1:
+            continue
+        out.append((int(idx[near[0]]), int(idx[near[-1]]) + 1))
+    return out
 
 
 def stops(arrays: dict, checkpoints: Sequence[Sequence[float]], threshold: float, *,

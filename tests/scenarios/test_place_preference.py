@@ -18,7 +18,34 @@ def gt(tmp_path_factory):
 @pytest.fixture(scope="module")
 def learned(tmp_path_factory):
     out = tmp_path_factory.mktemp("pp_learned")
-    return out, run_scenario("place-preference", ["--quick", "--out", str(out)])
+    robot = tmp_path_factory.mktemp("pp_robot")
+    return out, run_scenario("place-preference", ["--quick", "--out", str(out),
+                                                  "--save", str(robot)])
+
+
+def test_a_saved_robot_runs_the_same_trials(learned, tmp_path):
+    """--save after teaching, --load skips exploration, map and teaching: the trials of the
+    loaded robot are the trials of the run that never stopped, to the bit."""
+    out, m = learned
+    robot = next(p for p in out.parent.iterdir() if p.name.startswith("pp_robot"))
+    assert (robot / "manifest.json").is_file()
+    back = run_scenario("place-preference", ["--quick", "--load", str(robot), "--seed", "9",
+                                             "--out", str(tmp_path)])
+    assert back["loaded_from"] == str(robot) and back["seed"] == m["seed"] == 0
+    for key in ("trials", "waits_s", "learned_delay_s", "path_length_ratios",
+                "extinction_still_s", "states", "transitions", "simulated_s"):
+        assert back[key] == m[key], key
+    assert back["wall_s"] < m["wall_s"]  # no exploration, fit or teaching
+    # a folder that is not a place-preference robot is refused before any work
+    other = tmp_path / "other"
+    from hippo.snapshot import save_snapshot
+    save_snapshot({"scenario": "patrol"}, other)
+    with pytest.raises(SystemExit) as e:
+        run_scenario("place-preference", ["--load", str(other), "--out", str(tmp_path / "o")])
+    assert e.value.code == 2
+    (robot / "state.json").write_text("{}")  # damaged: its checksum no longer matches
+    with pytest.raises(SystemExit):
+        run_scenario("place-preference", ["--load", str(robot), "--out", str(tmp_path / "p")])
 
 
 def test_outputs_are_written(learned):

@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from hippo.tasks import AngleLaps, LapCounter, Route, passes, stops
+from hippo.sim import arenas
+from hippo.tasks import AngleLaps, LapCounter, Route, passes, progress_along, route_passes, stops
 from hippo.types import Mode
 
 SQUARE = [(0, 0), (100, 0), (100, 100), (0, 100)]
@@ -103,3 +104,70 @@ def test_stops_count_chosen_waits_near_checkpoints():
     # in the taught phase every stop near a checkpoint counts, at the trial's checkpoint
     taught = stops(arrays, [(0.0, 0.0), (100.0, 0.0)], threshold=0.1, taught_phase=4)
     assert [s["i0"] for s in taught] == [5, 20]
+
+
+def _walk(route: Route, laps: float, step: float = 1.5, jitter: float = 2.0, seed: int = 0):
+    """Positions of a robot walking ``laps`` laps along ``route`` at ``step`` cm per tick,
+    up to ``jitter`` cm off the centre line."""
+    rng = np.random.default_rng(seed)
+    s = np.arange(0.0, laps * route.length, step)
+    pts = np.array([route.at(v)[:2] for v in s]) + rng.uniform(-jitter, jitter, (len(s), 2))
+    return s, pts
+
+
+def test_a_route_through_two_rooms_runs_the_corridor_both_ways():
+    arena = arenas.two_rooms()
+    a, b = (15.0, 65.0), (100.0, 40.0)
+    r = Route.through(arena, [a, b])
+    # out through the corridor and back: about twice the shortest path, and it starts at a
+    one_way, _ = arena.shortest_path(a, b)
+    assert r.length == pytest.approx(2 * one_way, rel=0.1)
+    assert r.at(0.0)[:2] == pytest.approx(a)
+    assert r.progress(*b) == pytest.approx(r.length / 2, rel=0.1)
+    # the corridor's middle is on the route twice, once each way, at progress s and L - s
+    *_, h_out = r.at(r.progress_near(45.0, 45.0, r.length / 4, 40.0))
+    s_back = r.progress_near(45.0, 45.0, 3 * r.length / 4, 40.0)
+    assert s_back > r.length / 2 and math.cos(r.at(s_back)[2] - h_out) < -0.9
+    # every waypoint is free floor for the robot
+    assert all(arena.is_free(px, py, 3.7) for px, py in r.waypoints)
+    with pytest.raises(ValueError, match="at least two"):
+        Route.through(arena, [a])
+
+
+def test_lap_counter_follows_a_route_that_runs_over_itself():
+    r = Route.through(arenas.two_rooms(), [(15.0, 65.0), (100.0, 40.0)])
+    s, pts = _walk(r, 2.5)
+    tracked = progress_along(r, pts[:, 0], pts[:, 1])
+    # tracked progress follows the walk across both corridor crossings: within the jitter
+    # (2 cm) along the stretches, within 12 cm at the turn-around in room A, where the way in
+    # and the way out meet
+    err = np.abs(tracked - s)
+    assert np.max(err) < 12.0 and np.median(err) < 2.0
+    assert tracked[-1] / r.length == pytest.approx(2.5, abs=0.02)
+    # the nearest point of the whole route alone jumps between the two corridor stretches
+    glob = np.array([r.progress(px, py) for px, py in pts])
+    wrapped = (glob - s + r.length / 2) % r.length - r.length / 2
+    assert np.max(np.abs(wrapped)) > 20.0
+    # carried elsewhere: the next update searches the whole route
+    laps = LapCounter(r)
+    laps.update(*pts[0])
+    far = r.at(r.length / 2)
+    laps.update(far[0], far[1])
+    assert laps.progress == pytest.approx(r.length / 2, abs=3.0)
+
+
+def test_route_passes_count_one_pass_per_lap_by_progress():
+    r = Route(SQUARE)
+    s, pts = _walk(r, 3.0, step=2.0, jitter=1.0)
+    # a stop of 40 ticks at (100, 50) on the second lap, with wiggles around it
+    k = int(np.searchsorted(s, 400.0 + 150.0))
+    pts = np.vstack([pts[:k], np.repeat(pts[k:k + 1], 40, axis=0), pts[k:]])
+    phase = np.ones(len(pts), int)
+    phase[:5] = 0
+    arrays = {"x": pts[:, 0], "y": pts[:, 1], "phase": phase}
+    runs = route_passes(arrays, r, (100.0, 50.0), phase=1)
+    assert len(runs) == 3  # laps 1, 2, 3: the stop is inside the second pass, not a new one
+    assert runs[1][0] < k < k + 40 < runs[1][1]
+    # a pass under way at the start of the phase does not count
+    assert len(route_passes(arrays, r, (2.0, 0.0), phase=1)) == 2
+    assert route_passes(arrays, r, (100.0, 50.0), phase=7) == []
