@@ -10,6 +10,12 @@ states are summarised chunk by chunk and never held; ``hold``: ``fit(U, stream=F
 whole state sequence (T, N + 8) float32 is held. The recording is a smooth synthetic 8-sensor
 signal (memory does not depend on what the sensors see). Target (issue 14): flat in T at
 N = 600 from 1e4 to 1e6 ticks; N = 2400 x 1e6 ticks in <= 2 GB.
+
+Measured 2026-11-24 (streamed fit, 2 shared cores, ``ica_restarts=2``), MB the fit needs
+above the baseline: N = 600: 60 / 64 / 84 at T = 1e4 / 1e5 / 1e6 (before the ICA input was
+streamed: 61 / 81 / 430); N = 2400: 478 / 480 at T = 1e4 / 1e5 (peak RSS 586 / 598). What still
+grows with T is the ICA input itself, T x n_sfa float32 (16 MB at 1e6), and the chunks' starting
+states (N floats per 2,048 ticks).
 """
 
 from __future__ import annotations
