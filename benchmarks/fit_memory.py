@@ -2,7 +2,7 @@
 
 Run: ``python benchmarks/fit_memory.py [--n 600] [--ticks 1e4 1e5 1e6] [--modes stream hold]``.
 
-Each fit runs in a fresh process (``resource.getrusage`` peak RSS is per process); the table
+Each fit runs in a fresh process (peak RSS, ``VmHWM``, is per process); the table
 gives the peak RSS of the whole process, the RSS once the recording is in memory (baseline:
 Python, numpy, the recording ``U`` (T, 8) in float64), the difference (what the fit itself
 needs), and the wall / process CPU time of the fit. ``stream``: ``fit(U, stream=True)``, the
@@ -10,6 +10,12 @@ states are summarised chunk by chunk and never held; ``hold``: ``fit(U, stream=F
 whole state sequence (T, N + 8) float32 is held. The recording is a smooth synthetic 8-sensor
 signal (memory does not depend on what the sensors see). Target (issue 14): flat in T at
 N = 600 from 1e4 to 1e6 ticks; N = 2400 x 1e6 ticks in <= 2 GB.
+
+Measured 2026-11-24 (streamed fit, 2 shared cores, ``ica_restarts=2``), MB the fit needs
+above the baseline: N = 600: 60 / 64 / 84 at T = 1e4 / 1e5 / 1e6 (before the ICA input was
+streamed: 61 / 81 / 430); N = 2400: 478 / 480 at T = 1e4 / 1e5 (peak RSS 586 / 598). What still
+grows with T is the ICA input itself, T x n_sfa float32 (16 MB at 1e6), and the chunks' starting
+states (N floats per 2,048 ticks).
 """
 
 from __future__ import annotations
@@ -20,6 +26,19 @@ import resource
 import subprocess
 import sys
 import time
+
+
+def peak_rss_mb() -> float:
+    """This process's peak resident memory (MB): ``VmHWM`` of ``/proc/self/status`` (it starts
+    afresh at exec), else ``ru_maxrss`` (which Linux carries over from a large parent)."""
+    try:
+        with open("/proc/self/status") as fh:
+            for line in fh:
+                if line.startswith("VmHWM:"):
+                    return float(line.split()[1]) / 2**10
+    except OSError:
+        pass
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**10
 
 
 def child(n: int, T: int, mode: str) -> None:
@@ -34,11 +53,11 @@ def child(n: int, T: int, mode: str) -> None:
                                      + rng.uniform(0, 6))
     U += 0.05 * rng.standard_normal(U.shape)
     np.clip(U, 0.0, 1.0, out=U)
-    base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**10
+    base = peak_rss_mb()
     w, c = time.perf_counter(), time.process_time()
     RCSFAICA(n_reservoir=n, ica_restarts=2).fit(U, stream=(mode == "stream"))
     wall, cpu = time.perf_counter() - w, time.process_time() - c
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**10
+    peak = peak_rss_mb()
     print(json.dumps({"n": n, "T": T, "mode": mode, "base_mb": base, "peak_mb": peak,
                       "wall_s": wall, "cpu_s": cpu}))
 

@@ -133,7 +133,7 @@ def memory(size: dict) -> list[dict]:
                            f"{fit_mb[(n, T)]:.0f} MB (baseline: Python + U)"),
                      "peak_mb": r["peak_mb"], "fit_mb": fit_mb[(n, T)]})
     ts = sorted(T for n, T in fit_mb if n == 600)
-    if len(ts) >= 2:
+    if len(ts) >= 2 and fit_mb[(600, ts[0])] > 0:
         lo, hi = fit_mb[(600, ts[0])], fit_mb[(600, ts[-1])]
         rows.append({**row(f"fit memory growth, N = 600, T {ts[0]:.0e} -> {ts[-1]:.0e}", None,
                            None, "", "x", "hippo/peer", "flat (<= 1.5 x)", hi / lo <= 1.5,

@@ -230,7 +230,7 @@ def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarr
     ``obs`` must carry ``ir`` (``n_sensors`` readings in [0, 1]), ``t`` (a finite time, not
     earlier than ``last_t``: a clock running backwards is refused), ``odometry``
     (3 finite numbers), ``floor`` (an integer colour id >= 0), ``sound`` and ``moving`` (bools).
-    Cheap: one min/max over the readings (NaN fails it too), a few scalar tests.
+    Cheap: float comparisons over the readings (NaN fails them too), a few scalar tests.
     """
     try:
         ir, t, odo = obs.ir, obs.t, obs.odometry
@@ -244,7 +244,8 @@ def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarr
         raise ValueError(f"obs.ir must be {n_sensors} sensor readings, got {ir!r:.80}") from None
     if ir.shape != (n_sensors,):
         raise ValueError(f"obs.ir must have shape ({n_sensors},), got {ir.shape} ({ir!r:.80})")
-    if not (ir.min() >= 0.0 and ir.max() <= 1.0):
+    # a handful of numbers: plain float comparisons (NaN fails them) beat array reductions
+    if not all(0.0 <= v <= 1.0 for v in ir.tolist()):
         raise ValueError(f"obs.ir readings must be finite and in [0, 1], got {ir}")
     if isinstance(t, bool) or not isinstance(t, numbers.Real) or not math.isfinite(t):
         raise ValueError(f"obs.t must be a finite time in s, got {t!r}")
@@ -255,7 +256,7 @@ def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarr
         odo = np.asarray(odo, dtype=float)
     except (TypeError, ValueError):
         raise ValueError(f"obs.odometry must be (dx, dy, dtheta), got {odo!r:.80}") from None
-    if odo.shape != (3,) or not np.isfinite(odo).all():
+    if odo.shape != (3,) or not all(math.isfinite(v) for v in odo.tolist()):
         raise ValueError(f"obs.odometry must be 3 finite numbers (dx, dy, dtheta), got {odo!r:.80}")
     if isinstance(floor, bool | np.bool_) or not isinstance(floor, numbers.Integral) or floor < 0:
         raise ValueError(f"obs.floor must be an integer colour id >= 0, got {floor!r}")

@@ -296,10 +296,11 @@ class RCSFAICA(ParamsEstimator):
         harvest is summarised chunk by chunk into the SFA moments, keeping only each chunk's
         starting state; after SFA is solved the reservoir runs once more from those states and
         each chunk is projected at once onto the ``n_sfa`` slow features, which are all ICA
-        sees. Peak memory is then flat in T (the cost: the reservoir runs twice). Same numbers
-        as the held fit to float rounding. Default (None): stream when the states would take
-        more than 256 MB. Applies to the linear SFA of a reservoir (the other forms hold
-        their features).
+        sees (kept as float32, 16 bytes a tick at n_sfa = 4; ICA reads them chunk by chunk).
+        Peak memory is then flat in T but for that (the cost: the reservoir runs twice). Same
+        numbers as the held fit to float rounding (ICA: within its ``tol``). Default (None):
+        stream when the states would take more than 256 MB. Applies to the linear SFA of a
+        reservoir (the other forms hold their features).
         """
         U = self._check_U(U, fitting=True)
         self._check_trainable(U)

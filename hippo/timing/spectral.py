@@ -137,6 +137,7 @@ class SpectralTiming:
         self._log_mu = np.log(self.mu)
         self._cell_index = np.arange(self.mu.size)
         self._elapsed_memo: dict[float, float] = {}
+        self._battery_memo: dict[float, np.ndarray] = {}
         self._cal_code, self._cal_tau = _calibration(self)
         self.reset()
 
@@ -164,6 +165,18 @@ class SpectralTiming:
             t = np.asarray(t)[..., None]
         return np.exp(-0.5 * ((t - self.mu) / self.sigma) ** 2)
 
+    def _battery_at(self, tau: float) -> np.ndarray:
+        """:meth:`_tuning` of one elapsed time, remembered per ``tau`` as a read-only array: the
+        battery clock repeats the same sums of ``dt`` after every event, so most ticks look
+        the value up instead of computing it (the same numbers)."""
+        got = self._battery_memo.get(tau)
+        if got is None:
+            if len(self._battery_memo) >= 4096:
+                self._battery_memo.clear()
+            got = self._battery_memo[tau] = self._tuning(tau)
+            got.flags.writeable = False
+        return got
+
     def step(self, winner: int, dt: float) -> BatteryState:
         """Advance by ``dt`` seconds with ``winner`` as the state; restart at a change of winner.
 
@@ -174,16 +187,16 @@ class SpectralTiming:
         dt = check_positive("dt", dt)
         if self.state is None:  # first state ever: an event without a predecessor
             self.state, self.tau = winner, 0.0
-            self.activity = self._tuning(0.0)
+            self.activity = self._battery_at(0.0)
             return BatteryState(winner, 0.0, self.activity, True)
         if winner == self.state:
             self.tau += dt
-            self.activity = self._tuning(self.tau)
+            self.activity = self._battery_at(self.tau)
             return BatteryState(winner, self.tau, self.activity, False)
         previous, previous_tau = self.state, self.tau + dt
-        previous_activity = self._tuning(previous_tau)
+        previous_activity = self._battery_at(previous_tau)
         self.state, self.tau = winner, 0.0
-        self.activity = self._tuning(0.0)
+        self.activity = self._battery_at(0.0)
         return BatteryState(winner, 0.0, self.activity, True, previous, previous_tau,
                             previous_activity)
 

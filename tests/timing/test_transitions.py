@@ -158,3 +158,25 @@ def test_same_seed_same_result_and_long_waits_stay_over():
     for _ in range(5000):  # 1000 s: far beyond the battery, the delay stays over
         ro = cells.step(timing.step(0, DT), DT)
     assert ro[(0, 1)].delay_over and cells.elapsed == math.inf
+
+
+def test_settled_ticks_skip_learning_with_the_same_numbers():
+    """Between events m^US is exactly one-hot at the winner and eta = 0 on every row: the
+    step skips the learning there. Weights, delays and readouts equal those of a run that
+    takes the learning step on every tick, bit for bit."""
+    rng = np.random.default_rng(7)
+    states = np.repeat(rng.integers(0, 4, 60), rng.integers(1, 80, 60))  # dwell 0.2-16 s
+    runs = []
+    for skip in (True, False):
+        timing = SpectralTiming()
+        cells = TransitionCells(timing)
+        cells._skip_settled = skip
+        reads = []
+        for s in states:
+            reads.append(cells.step(timing.step(int(s), DT), DT))
+        runs.append((cells, reads))
+    (a, ra), (b, rb) = runs
+    assert a.transitions == b.transitions and len(a.transitions) >= 6
+    for key in a.transitions:
+        np.testing.assert_array_equal(a.weights(key), b.weights(key))
+    assert ra == rb
