@@ -19,7 +19,7 @@ import time
 import numpy as np
 
 from hippo._threads import free_cores
-from hippo.perception.place_cells import RCSFAICAParams, fit_leak_sweep
+from hippo.perception import RCSFAICAParams, fit_leak_sweep
 
 LEAKS = [(a, b) for a in (0.05, 0.08, 0.11, 0.14) for b in (0.11, 0.14, 0.15, 0.2)]
 

@@ -145,7 +145,7 @@ def leak_sweep(size: dict) -> list[dict]:
     from leak_sweep_threads import LEAKS, recording
 
     from hippo._threads import free_cores
-    from hippo.perception.place_cells import RCSFAICA, RCSFAICAParams, fit_leak_sweep
+    from hippo.perception import RCSFAICA, RCSFAICAParams, fit_leak_sweep
 
     U = recording(size["leak_ticks"])
     params = RCSFAICAParams(ica_restarts=3)

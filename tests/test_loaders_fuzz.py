@@ -24,7 +24,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from hippo.cognitive_map import DriveParams, Drives, TransitionGraph
-from hippo.cognitive_map.graph import random_transition_graph
+from hippo.cognitive_map.synthetic import random_transition_graph
 from hippo.io import CorruptFileError
 from hippo.perception import RCSFAICA
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams

@@ -10,7 +10,7 @@ import pytest
 
 from hippo.agent import Agent, LearnedPlaceCells
 from hippo.cognitive_map import DriveParams, Drives
-from hippo.cognitive_map.graph import random_transition_graph
+from hippo.cognitive_map.synthetic import random_transition_graph
 from hippo.io import CorruptFileError
 from hippo.perception import RCSFAICA
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams

@@ -31,90 +31,25 @@ samples, without storing them. The kind (move/wait) is the majority kind (a tie 
 
 from __future__ import annotations
 
-import json
 import math
 import os
-from collections.abc import Callable, Hashable, Iterable, Iterator
+from collections.abc import Callable, Hashable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any
 
 import networkx as nx
 import numpy as np
 
 from hippo._checks import check_finite, check_positive, check_range
-from hippo.io import CorruptFileError, atomic_write_text
+from hippo.cognitive_map.actions import MOVE, WAIT, Action, ActionLike, as_action, wrap_exact
+from hippo.cognitive_map.graphml import GRAPHML_FORMAT, NODE_ATTRS, read_graphml, write_graphml
 from hippo.types import Transition, check_state_id
 
-WAIT = "wait"
-MOVE = "move"
-GRAPHML_FORMAT = "hippo.cognitive_map.TransitionGraph/1"
-
-_FLOAT_ATTRS = ("heading", "heading_r", "distance", "delay", "strength", "last_used")
-_INT_ATTRS = ("a", "b", "count", "n_wait", "n_delay")
-_STR_ATTRS = ("action",)
-NODE_ATTRS = _INT_ATTRS + _STR_ATTRS + _FLOAT_ATTRS
-"""Every attribute a transition node carries (``None`` allowed for the float ones but strength)."""
-
-
-@dataclass(frozen=True)
-class Action:
-    """The motor action of a transition: move along ``heading`` (rad) for ``distance`` (cm) or wait.
-
-    Build with :meth:`move` or :meth:`wait`.
-    """
-
-    kind: Literal["move", "wait"]
-    heading: float | None = None
-    distance: float | None = None
-
-    def __post_init__(self) -> None:
-        if self.kind not in (MOVE, WAIT):
-            raise ValueError(f"action kind must be 'move' or 'wait', got {self.kind!r}")
-        if self.kind == MOVE:
-            if self.heading is None or self.distance is None:
-                raise ValueError("a move action needs both a heading (rad) and a distance (cm)")
-            check_finite("heading", self.heading)
-            check_positive("distance", self.distance, allow_zero=True)
-
-    @classmethod
-    def move(cls, heading: float, distance: float) -> Action:
-        """A move along ``heading`` (rad; stored wrapped to (-π, π]) for ``distance`` cm."""
-        return cls(MOVE, _wrap(float(heading)), float(distance))
-
-    @classmethod
-    def wait(cls) -> Action:
-        """Stand still (HIREL's checkpoint transitions)."""
-        return cls(WAIT)
-
-    @property
-    def is_wait(self) -> bool:
-        return self.kind == WAIT
-
-
-ActionLike = Action | Literal["wait"] | tuple[float, float]
-
-
-def _wrap(angle: float) -> float:
-    """Wrap an angle to (-π, π]."""
-    a = math.remainder(angle, 2.0 * math.pi)
-    return math.pi if a == -math.pi else a
-
-
-def _as_action(action: ActionLike) -> Action:
-    if isinstance(action, Action):
-        return action
-    if isinstance(action, str):
-        if action == WAIT:
-            return Action.wait()
-        raise ValueError(f"action must be an Action, 'wait' or (heading, distance), got {action!r}")
-    try:
-        heading, distance = action
-    except (TypeError, ValueError):
-        raise ValueError(
-            f"action must be an Action, 'wait' or (heading, distance), got {action!r}"
-        ) from None
-    return Action.move(heading, distance)
+__all__ = [
+    "GRAPHML_FORMAT", "MOVE", "NODE_ATTRS", "WAIT", "Action", "ActionLike", "TransitionGraph",
+    "TransitionIndex", "as_transition", "state_id",
+]
 
 
 def state_id(value: Any, name: str = "state") -> int:
@@ -137,10 +72,6 @@ def _xy(state: int, position: Any) -> tuple[float, float]:
     if arr.shape != (2,):
         raise ValueError(f"position of state {state} must be (x, y), got {position!r}")
     return float(arr[0]), float(arr[1])
-
-
-def _node_id(t: Transition) -> str:
-    return f"{t[0]}->{t[1]}"
 
 
 class TransitionGraph:
@@ -308,7 +239,7 @@ class TransitionGraph:
         ``x→a`` and every ``b→y`` already known (so ``structure_version`` grows).
         """
         t = (state_id(a, "a"), state_id(b, "b"))
-        act = _as_action(action)
+        act = as_action(action)
         if delay is not None:
             delay = check_positive("delay", delay, allow_zero=True)
         if time is not None:
@@ -341,7 +272,7 @@ class TransitionGraph:
                 r = d["heading_r"] * n_move
                 sx = r * math.cos(d["heading"]) + math.cos(act.heading)
                 sy = r * math.sin(d["heading"]) + math.sin(act.heading)
-                d["heading"] = _wrap(math.atan2(sy, sx))
+                d["heading"] = wrap_exact(math.atan2(sy, sx))
                 d["heading_r"] = min(1.0, math.hypot(sx, sy) / (n_move + 1))
                 d["distance"] += (act.distance - d["distance"]) / (n_move + 1)
         d["count"] += 1
@@ -418,97 +349,16 @@ class TransitionGraph:
 
     # ----------------------------------------------------------------- GraphML
     def to_graphml(self, path: str | os.PathLike) -> Path:
-        """Write the map to a GraphML file atomically (temp file + rename; never half-written).
-
-        Node ids are ``"a->b"`` strings; every node attribute is written with its type, ``None``
-        values are left out (GraphML has no null) and restored as ``None`` on reading. State
-        positions go into the graph attribute ``states`` as JSON.
-        """
-        h = nx.DiGraph()
-        h.graph["format"] = GRAPHML_FORMAT
-        h.graph["states"] = json.dumps(
-            [[s, None, None, 0] if p is None else [s, p[0], p[1], self._pos_n.get(s, 1)]
-             for s, p in self._states.items()])
-        for t, d in self._g.nodes(data=True):
-            attrs: dict[str, Any] = {}
-            for k in _INT_ATTRS:
-                attrs[k] = int(d[k])
-            attrs["action"] = str(d["action"])
-            for k in _FLOAT_ATTRS:
-                if d[k] is not None:
-                    attrs[k] = float(d[k])
-            h.add_node(_node_id(t), **attrs)
-        h.add_edges_from((_node_id(u), _node_id(v)) for u, v in self._g.edges)
-        text = "\n".join(nx.generate_graphml(h)) + "\n"
-        return atomic_write_text(path, text)
+        """Write the map to a GraphML file atomically (see
+        :func:`~hippo.cognitive_map.graphml.write_graphml`)."""
+        return write_graphml(self, path)
 
     @classmethod
     def from_graphml(cls, path: str | os.PathLike) -> TransitionGraph:
-        """Read a map written by :meth:`to_graphml`; :class:`~hippo.io.CorruptFileError` if bad.
-
-        Nothing is trusted: every node attribute must have its type (integers as integers,
-        finite floats) and lie in its range (ids >= 0; ``count >= 1``; ``0 <= n_wait, n_delay
-        <= count``; the action the majority of ``n_wait``; a move has a heading in (-π, π], a
-        ``heading_r`` in [0, 1] and a distance >= 0; delay >= 0 and present exactly when
-        ``n_delay > 0``; strength in [0, 1]); unknown attributes, node ids that do not match
-        their ``a``/``b``, state positions that are not finite, and links that break the
-        ``A->B -> B->C`` rule are refused. The map is built only once every check passed.
-        """
-        path = Path(path)
-        if not path.exists():
-            raise FileNotFoundError(f"no such file: {path}")
-        try:
-            h = nx.read_graphml(path, node_type=str)
-        except Exception as exc:  # any parse failure of the file is a corrupt file
-            raise CorruptFileError(f"{path} is not a readable GraphML file ({exc!r})") from exc
-        if h.graph.get("format") != GRAPHML_FORMAT:
-            raise CorruptFileError(
-                f"{path} is not a hippo transition graph (format {h.graph.get('format')!r})")
-        if not isinstance(h, nx.DiGraph) or isinstance(h, nx.MultiDiGraph):
-            raise CorruptFileError(f"{path} is not a directed simple graph")
-        g = cls()
-        try:
-            g._read_states(h.graph.get("states", "[]"))
-            for nid, d in h.nodes(data=True):
-                attrs = _checked_node(nid, d)
-                t = (attrs["a"], attrs["b"])
-                if t in g._g:
-                    raise ValueError(f"transition {nid} appears twice")
-                g._insert(t, attrs)
-        except (KeyError, ValueError, TypeError, OverflowError, json.JSONDecodeError) as exc:
-            raise CorruptFileError(f"{path}: bad transition graph content ({exc})") from exc
-        file_edges = set(h.edges)
-        own_edges = {(_node_id(u), _node_id(v)) for u, v in g._g.edges}
-        if file_edges != own_edges:
-            raise CorruptFileError(
-                f"{path}: links differ from the A->B -> B->C rule "
-                f"({len(file_edges - own_edges)} extra, {len(own_edges - file_edges)} missing)")
-        return g
-
-    def _read_states(self, text: Any) -> None:
-        if not isinstance(text, str):
-            raise ValueError(f"the graph attribute 'states' must be a JSON string, got {text!r}")
-        rows = json.loads(text)
-        if not isinstance(rows, list):
-            raise ValueError("'states' must be a list of [state, x, y, n]")
-        for row in rows:
-            if not isinstance(row, list) or len(row) != 4:
-                raise ValueError(f"a state row must be [state, x, y, n], got {row!r}")
-            s, x, y, n = row
-            s = _file_int("state", s, lo=0)
-            if s in self._states:
-                raise ValueError(f"state {s} is listed twice")
-            n = _file_int(f"observation count of state {s}", n, lo=0)
-            if x is None and y is None:
-                if n != 0:
-                    raise ValueError(f"state {s} has no position but {n} observations")
-                self._states[s] = None
-            else:
-                self._states[s] = (_file_float(f"x of state {s}", x),
-                                   _file_float(f"y of state {s}", y))
-                if n < 1:
-                    raise ValueError(f"state {s} has a position but {n} observations")
-            self._pos_n[s] = n
+        """Read a map written by :meth:`to_graphml`, trusting nothing (see
+        :func:`~hippo.cognitive_map.graphml.read_graphml`); :class:`~hippo.io.CorruptFileError`
+        if bad."""
+        return read_graphml(path, cls)
 
     def same_as(self, other: TransitionGraph) -> bool:
         """True when both maps hold the same transitions, links, attributes and states."""
@@ -517,67 +367,6 @@ class TransitionGraph:
                 and all(self._pos_n.get(s) == other._pos_n.get(s) for s in self.positions)
                 and dict(self._g.nodes(data=True)) == dict(other._g.nodes(data=True))
                 and set(self._g.edges) == set(other._g.edges))
-
-
-def _file_int(name: str, v: Any, lo: int | None = None) -> int:
-    if isinstance(v, bool) or not isinstance(v, int):
-        raise ValueError(f"{name} must be an integer, got {v!r}")
-    if lo is not None and v < lo:
-        raise ValueError(f"{name} must be >= {lo}, got {v}")
-    return v
-
-
-def _file_float(name: str, v: Any, lo: float = -math.inf, hi: float = math.inf) -> float:
-    if isinstance(v, bool) or not isinstance(v, int | float):
-        raise ValueError(f"{name} must be a number, got {v!r}")
-    f = float(v)
-    if not (math.isfinite(f) and lo <= f <= hi):
-        raise ValueError(f"{name} must be finite and in [{lo}, {hi}], got {v!r}")
-    return f
-
-
-def _checked_node(nid: str, d: dict[str, Any]) -> dict[str, Any]:
-    """The attributes of node ``nid`` read from a file, each checked for type and range."""
-    extra = set(d) - set(NODE_ATTRS)
-    if extra:
-        raise ValueError(f"node {nid!r} has unknown attribute(s) {sorted(extra)}")
-    missing = [k for k in (*_INT_ATTRS, "action", "strength") if k not in d]
-    if missing:
-        raise ValueError(f"node {nid!r} lacks attribute(s) {missing}")
-    at: dict[str, Any] = {k: _file_int(f"{k} of {nid!r}", d[k], lo=0) for k in _INT_ATTRS}
-    if _node_id((at["a"], at["b"])) != nid:
-        raise ValueError(f"node id {nid!r} does not match a={at['a']}, b={at['b']}")
-    count = at["count"]
-    if count < 1 or at["n_wait"] > count or at["n_delay"] > count:
-        raise ValueError(f"node {nid!r}: need count >= 1 and n_wait, n_delay <= count, got "
-                         f"count={count}, n_wait={at['n_wait']}, n_delay={at['n_delay']}")
-    action = d["action"]
-    if action not in (MOVE, WAIT):
-        raise ValueError(f"node {nid!r}: action must be 'move' or 'wait', got {action!r}")
-    if (action == WAIT) != (2 * at["n_wait"] > count):
-        raise ValueError(f"node {nid!r}: action {action!r} is not the majority of "
-                         f"{at['n_wait']} wait(s) in {count}")
-    at["action"] = action
-    for k in _FLOAT_ATTRS:
-        at[k] = _file_float(f"{k} of {nid!r}", d[k]) if k in d else None
-    moves = count - at["n_wait"]
-    if moves > 0:
-        for k in ("heading", "heading_r", "distance"):
-            if at[k] is None:
-                raise ValueError(f"node {nid!r} has {moves} move(s) but no {k}")
-    if at["heading"] is not None and not -math.pi < at["heading"] <= math.pi:
-        raise ValueError(f"heading of {nid!r} must lie in (-pi, pi], got {at['heading']}")
-    if at["heading_r"] is not None and not 0.0 <= at["heading_r"] <= 1.0:
-        raise ValueError(f"heading_r of {nid!r} must lie in [0, 1], got {at['heading_r']}")
-    if at["distance"] is not None and at["distance"] < 0:
-        raise ValueError(f"distance of {nid!r} must be >= 0, got {at['distance']}")
-    if (at["delay"] is None) != (at["n_delay"] == 0):
-        raise ValueError(f"node {nid!r}: a delay must be present exactly when n_delay > 0")
-    if at["delay"] is not None and at["delay"] < 0:
-        raise ValueError(f"delay of {nid!r} must be >= 0, got {at['delay']}")
-    if not 0.0 <= at["strength"] <= 1.0:
-        raise ValueError(f"strength of {nid!r} must lie in [0, 1], got {at['strength']}")
-    return at
 
 
 @dataclass(frozen=True)
@@ -608,38 +397,3 @@ class TransitionIndex:
 
     def __len__(self) -> int:
         return len(self.nodes)
-
-
-def random_transition_graph(n_states: int, n_transitions: int, rng: np.random.Generator,
-                            *, allow_self: bool = False) -> TransitionGraph:
-    """A random map of ``n_transitions`` distinct transitions over ``n_states`` states (for tests).
-
-    Actions are random moves; a few are waits.
-    """
-    if n_states < 1:
-        raise ValueError(f"n_states must be >= 1, got {n_states}")
-    max_t = n_states * n_states if allow_self else n_states * (n_states - 1)
-    if not 0 <= n_transitions <= max_t:
-        raise ValueError(f"n_transitions must lie in [0, {max_t}] for {n_states} states")
-    g = TransitionGraph()
-    seen: set[Transition] = set()
-    while len(seen) < n_transitions:
-        a, b = (int(x) for x in rng.integers(0, n_states, size=2))
-        if (a == b and not allow_self) or (a, b) in seen:
-            continue
-        seen.add((a, b))
-        act: ActionLike = WAIT if rng.random() < 0.1 else (
-            float(rng.uniform(-math.pi, math.pi)), float(rng.uniform(1, 50)))
-        g.add_transition(a, b, act, float(rng.uniform(0.5, 10)))
-    return g
-
-
-def transitions_from_state_edges(edges: Iterable[tuple[int, int]], *,
-                                 both_ways: bool = True) -> TransitionGraph:
-    """A map with one move transition per state edge (and its reverse if ``both_ways``)."""
-    g = TransitionGraph()
-    for a, b in edges:
-        g.add_transition(a, b, (0.0, 1.0))
-        if both_ways:
-            g.add_transition(b, a, (math.pi, 1.0))
-    return g

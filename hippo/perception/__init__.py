@@ -16,13 +16,9 @@
 
 from hippo.perception.contexts import ContextParams, ContextStates
 from hippo.perception.ica import FastICA, ICAConvergenceWarning, ICAParams
-from hippo.perception.place_cells import (
-    ICANN09,
-    RCSFAICA,
-    SMC09,
-    RCSFAICAParams,
-    fit_leak_sweep,
-)
+from hippo.perception.leak_sweep import fit_leak_sweep
+from hippo.perception.place_cell_params import ICANN09, SMC09, RCSFAICAParams
+from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
 from hippo.perception.resample import Decimator
 from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak

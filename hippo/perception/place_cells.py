@@ -40,49 +40,34 @@ and outputs are held in between.
 
 from __future__ import annotations
 
-import json
 import os
-import re
 import warnings
-from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import asdict, dataclass, fields, replace
+from dataclasses import replace
 from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_array, check_choice, check_fields, check_finite, check_int
+from hippo._checks import check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
-from hippo._threads import n_workers, parallel_map, single_threaded_blas
-from hippo.io import CorruptFileError, load_npz, save_npz
-from hippo.perception.ica import FastICA, ICAParams
+from hippo._threads import single_threaded_blas
+from hippo.perception.ica import FastICA
+from hippo.perception.place_cell_files import FORMAT, load_model, save_model
+from hippo.perception.place_cell_params import ICANN09, SMC09, RCSFAICAParams
 from hippo.perception.resample import Decimator, hold
-from hippo.perception.reservoir import (
-    Reservoir,
-    ReservoirParams,
-    _check_device,
-    _leak_param,
-    _np_dtype,
-    expand_leak,
-)
-from hippo.perception.reservoir import _num_threads as _torch_threads
-from hippo.perception.sfa import SFA, SFAMoments, SFAParams, chunk_bounds
+from hippo.perception.reservoir import Reservoir
+from hippo.perception.sfa import SFA, SFAMoments, chunk_bounds
 
-FORMAT = "hippo.perception.RCSFAICA/1"
-
-
-_RESERVOIR_NAMES = {"n_inputs": "n_inputs", "n_neurons": "n_reservoir", "leak": "leak",
-                    "spectral_radius": "spectral_radius", "input_weight": "input_weight",
-                    "input_prob": "input_prob", "seed": "seed"}
-_SFA_NAMES = {"n_components": "n_sfa", "cutoff": "sfa_cutoff", "expansion": "sfa_expansion"}
-_ICA_NAMES = {"n_components": "n_ica", "algorithm": "ica_algorithm", "max_iter": "ica_max_iter",
-              "tol": "ica_tol", "n_restarts": "ica_restarts", "score": "ica_score"}
-#: no fitted array holds a larger magnitude; a loaded one that does is damaged
-_MAX_ABS = 1e12
-_REQUIRED = ("format", "params", "sfa_mean", "sfa_scale", "sfa_W", "sfa_slowness", "ica_mean",
-             "ica_whitening", "ica_rotation", "output_std", "output_peak")
+__all__ = [
+    "FORMAT",
+    "ICANN09",
+    "RCSFAICA",
+    "SMC09",
+    "InputRangeWarning",
+    "RCSFAICAParams",
+]
 
 
 class InputRangeWarning(RuntimeWarning):
@@ -94,101 +79,6 @@ _HARVEST_CHUNK = 2048
 _HOLD_BYTES = 256 * 2**20
 #: rows per chunk when the ICA outputs' statistics are taken
 _OUT_CHUNK = 65536
-#: leak configurations harvested together by ``fit_leak_sweep``
-_SWEEP_BATCH = 16
-
-
-@dataclass(frozen=True)
-class RCSFAICAParams:
-    """All hyper-parameters of the three layers; defaults are SMC09's (:meth:`RCSFAICA.smc09`)."""
-
-    # input
-    n_inputs: int = 8
-    downsample: int = 1
-    # reservoir (SMC09 eq. 1)
-    use_reservoir: bool = True
-    n_reservoir: int = 600
-    leak: float | tuple[float, ...] = (0.05, 0.15)
-    spectral_radius: float = 0.99
-    input_weight: float = 2.0
-    input_prob: float = 0.075
-    # SFA (eq. 2-7)
-    n_sfa: int = 4
-    sfa_cutoff: float | str = 1e-8
-    sfa_expansion: str = "linear"
-    # ICA (eq. 8-10)
-    n_ica: int = 4
-    ica_algorithm: str = "symmetric"
-    ica_restarts: int = 10
-    ica_score: str = "kurtosis"
-    ica_max_iter: int = 1000
-    ica_tol: float = 1e-6
-    # training
-    washout: int = 0
-    seed: int = 0
-    dtype: str = "float32"
-    device: str = "cpu"
-    # input checks (see "Input policy" in the module docstring)
-    input_range: tuple[float, float] | None = (0.0, 1.0)
-    out_of_range: str = "error"
-    min_fit_ticks: int = 100
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "leak", _leak_param(self.leak))
-        if isinstance(self.input_range, list):
-            object.__setattr__(self, "input_range", tuple(self.input_range))
-        check_fields(self)
-        check_int("n_inputs", self.n_inputs, lo=1)
-        check_int("downsample", self.downsample, lo=1)
-        check_int("washout", self.washout, lo=0)
-        check_int("n_reservoir", self.n_reservoir, lo=1)
-        check_int("n_sfa", self.n_sfa, lo=1)
-        check_int("n_ica", self.n_ica, lo=1)
-        if self.n_ica > self.n_sfa:
-            raise ValueError(f"n_ica={self.n_ica} exceeds n_sfa={self.n_sfa}")
-        check_int("min_fit_ticks", self.min_fit_ticks, lo=3)
-        if self.input_range is not None:
-            lo, hi = self.input_range
-            if not lo < hi:
-                raise ValueError(f"input_range must be (low, high) with low < high, got "
-                                 f"{self.input_range!r}")
-        check_choice("out_of_range", self.out_of_range, ("error", "warn", "clip"))
-        _np_dtype(self.dtype)
-        _check_device(self.device)
-        # delegate the remaining checks to the layers' own parameter classes, naming the
-        # RCSFAICA field in the message
-        for build, names in ((self.reservoir_params, _RESERVOIR_NAMES),
-                             (self.sfa_params, _SFA_NAMES), (self.ica_params, _ICA_NAMES)):
-            try:
-                build()
-            except ValueError as exc:
-                msg = str(exc)
-                ours = [o for theirs, o in names.items() if re.search(rf"\b{theirs}\b", msg)]
-                raise ValueError(f"{' / '.join(ours) or 'RCSFAICAParams'}: {msg}") from None
-
-    def reservoir_params(self) -> ReservoirParams:
-        return ReservoirParams(n_inputs=self.n_inputs, n_neurons=self.n_reservoir,
-                               spectral_radius=self.spectral_radius, leak=self.leak,
-                               input_weight=self.input_weight, input_prob=self.input_prob,
-                               seed=self.seed)
-
-    def sfa_params(self) -> SFAParams:
-        return SFAParams(n_components=self.n_sfa, cutoff=self.sfa_cutoff,
-                         expansion=self.sfa_expansion)
-
-    def ica_params(self) -> ICAParams:
-        return ICAParams(n_components=self.n_ica, algorithm=self.ica_algorithm,
-                         max_iter=self.ica_max_iter, tol=self.ica_tol,
-                         n_restarts=self.ica_restarts, score=self.ica_score, seed=self.seed)
-
-
-#: SMC09 (e-puck, 8 IR sensors, two rooms): 600 neurons, leaks 0.05/0.15, ρ 0.99, W_in ±2 p 0.075
-SMC09 = RCSFAICAParams()
-#: ICANN09 (17 distance sensors, maze E1): 400 neurons, leak 0.6, ρ 0.9, W_in ±0.2 p 0.15,
-#: 70 SFA / 70 ICA units, input down-sampled by 50
-ICANN09 = RCSFAICAParams(n_inputs=17, downsample=50, n_reservoir=400, leak=0.6,
-                         spectral_radius=0.9, input_weight=0.2, input_prob=0.15,
-                         n_sfa=70, n_ica=70)
 
 
 class RCSFAICA(ParamsEstimator):
@@ -505,141 +395,17 @@ class RCSFAICA(ParamsEstimator):
 
     # ------------------------------------------------------------------ persistence
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the fitted model to ``path`` (.npz, atomic, no pickle)."""
-        self._check_fitted()
-        arrays: dict[str, Any] = {
-            "format": np.array(FORMAT),
-            "params": np.array(json.dumps(asdict(self.params))),
-            "sfa_mean": self.sfa_.mean_, "sfa_scale": self.sfa_.scale_, "sfa_W": self.sfa_.W_,
-            "sfa_slowness": self.sfa_.slowness_, "sfa_cutoff": np.array(self.sfa_.cutoff_),
-            "sfa_n_whitened": np.array(self.sfa_.n_whitened_),
-            "ica_mean": self.ica_.mean_, "ica_whitening": self.ica_.whitening_,
-            "ica_rotation": self.ica_.rotation_,
-            "output_std": self.output_std_, "output_peak": self.output_peak_,
-        }
-        if self.params.sfa_expansion == "quadratic":
-            arrays["sfa_pre_mean"] = self.sfa_.pre_mean_
-            arrays["sfa_pre_scale"] = self.sfa_.pre_scale_
-        if self.reservoir_ is not None:
-            arrays.update(W_in=self.reservoir_.W_in, W_res=self.reservoir_.W_res,
-                          leak=self.reservoir_.leak)
-        return save_npz(path, arrays)
+        """Write the fitted model to ``path`` (.npz, atomic, no pickle; see
+        :mod:`hippo.perception.place_cell_files`)."""
+        return save_model(self, path)
 
     @classmethod
     def load(cls, path: str | os.PathLike) -> RCSFAICA:
-        """Read a model written by :meth:`save`.
-
-        Nothing in the file is trusted: the format tag, the parameters (type- and range-checked
-        like the constructor's), and every array's dtype, shape (consistent with the
-        parameters and with each other) and finiteness, the reservoir's leak and spectral radius
-        against its parameters, scales and standard deviations > 0. A damaged file raises
-        :class:`~hippo.io.CorruptFileError` (a ``ValueError``) naming the problem; nothing is
-        half-loaded (the model is built only once every check passed).
-        """
-        a = load_npz(path, required=_REQUIRED)
-        try:
-            return cls._from_arrays(a)
-        except CorruptFileError as exc:
-            raise CorruptFileError(f"{path}: {exc}") from exc
-        except (ValueError, TypeError, KeyError, IndexError, OverflowError) as exc:
-            raise CorruptFileError(f"{path}: inconsistent model file ({exc})") from exc
-
-    @classmethod
-    def _from_arrays(cls, a: dict[str, np.ndarray]) -> RCSFAICA:
-        fmt = a["format"]
-        if fmt.dtype.kind != "U" or fmt.shape != () or str(fmt) != FORMAT:
-            raise CorruptFileError(f"not an RCSFAICA model (format {str(fmt)[:80]!r})")
-        if a["params"].dtype.kind != "U" or a["params"].shape != ():
-            raise CorruptFileError("the parameters are not a JSON string")
-        try:
-            raw = json.loads(str(a["params"]))
-        except json.JSONDecodeError as exc:
-            raise CorruptFileError(f"unreadable parameters ({exc})") from exc
-        if not isinstance(raw, dict):
-            raise CorruptFileError(f"the parameters are not a JSON object: {str(raw)[:80]}")
-        known = {f.name for f in fields(RCSFAICAParams)}
-        if isinstance(raw.get("input_range"), list):
-            raw["input_range"] = tuple(raw["input_range"])
-        try:
-            params = RCSFAICAParams(**{k: v for k, v in raw.items() if k in known})
-        except (TypeError, ValueError) as exc:
-            raise CorruptFileError(f"bad parameters ({exc})") from exc
-        p = params
-
-        def arr(key: str, shape: tuple[int | None, ...], dtype: str = "float") -> np.ndarray:
-            if key not in a:
-                raise CorruptFileError(f"lacks required array {key!r}")
-            try:
-                return check_array(key, a[key], shape=shape, dtype=dtype, max_abs=_MAX_ABS)
-            except ValueError as exc:
-                raise CorruptFileError(str(exc)) from None
-
-        def positive(key: str, v: np.ndarray) -> np.ndarray:
-            if not (v > 0).all():
-                raise CorruptFileError(f"{key} must be > 0 everywhere, got min {v.min():g}")
-            return v
-
-        n_u, n_sfa, n_ica = p.n_inputs, p.n_sfa, p.n_ica
-        reservoir = None
-        if p.use_reservoir:
-            N = p.n_reservoir
-            W_in = arr("W_in", (N, n_u))
-            W_res = arr("W_res", (N, N))
-            leak = arr("leak", (N,))
-            if not np.array_equal(leak, expand_leak(p.leak, N)):
-                raise CorruptFileError(f"leak does not match the parameters' leak {p.leak}")
-            radius = float(np.max(np.abs(np.linalg.eigvals(W_res)))) if N else 0.0
-            if not abs(radius - p.spectral_radius) <= 1e-6 * max(1.0, p.spectral_radius):
-                raise CorruptFileError(f"W_res has spectral radius {radius:.6g}, its parameters "
-                                       f"say {p.spectral_radius}")
-            reservoir = Reservoir.from_weights(W_in, W_res, leak,
-                                               spectral_radius=p.spectral_radius,
-                                               dtype=p.dtype, device=p.device)
-        d_in = n_u + (p.n_reservoir if p.use_reservoir else 0)
-        sfa = SFA(p.sfa_params())
-        if p.sfa_expansion == "quadratic":
-            sfa.pre_mean_ = arr("sfa_pre_mean", (d_in,))
-            sfa.pre_scale_ = positive("sfa_pre_scale", arr("sfa_pre_scale", (d_in,)))
-            d = d_in + d_in * (d_in + 1) // 2
-        else:
-            d = d_in
-        sfa.n_features_in_ = d_in
-        sfa.mean_ = arr("sfa_mean", (d,))
-        sfa.scale_ = arr("sfa_scale", (d,))
-        if not (sfa.scale_ > 1e-12 * (1.0 + np.abs(sfa.mean_))).all():
-            raise CorruptFileError("sfa_scale must be > 0 everywhere (above 1e-12 of the "
-                                   "feature's mean, as fit leaves it)")
-        sfa.W_ = arr("sfa_W", (d, n_sfa))
-        sfa.slowness_ = arr("sfa_slowness", (n_sfa,))
-        cutoff = arr("sfa_cutoff", ()) if "sfa_cutoff" in a else np.array(np.nan)
-        sfa.cutoff_ = float(cutoff)
-        if "sfa_n_whitened" in a:
-            nw = int(arr("sfa_n_whitened", (), dtype="int"))
-            if not n_sfa <= nw <= d:
-                raise CorruptFileError(f"sfa_n_whitened={nw} must lie in [{n_sfa}, {d}]")
-            sfa.n_whitened_ = nw
-        else:
-            sfa.n_whitened_ = -1
-        ica = FastICA(p.ica_params())
-        ica.mean_ = arr("ica_mean", (n_sfa,))
-        ica.whitening_ = arr("ica_whitening", (n_sfa, n_ica))
-        ica.rotation_ = arr("ica_rotation", (n_ica, n_ica))
-        if not np.allclose(ica.rotation_ @ ica.rotation_.T, np.eye(n_ica), atol=1e-6):
-            raise CorruptFileError("ica_rotation is not orthonormal (FastICA's unmixing is)")
-        ica.components_ = ica.rotation_ @ ica.whitening_.T
-        ica.n_features_in_ = n_sfa
-        output_std = positive("output_std", arr("output_std", (n_ica,)))
-        output_peak = arr("output_peak", (n_ica,))
-        ica.output_std_ = output_std
-        self = cls(params)
-        self.reservoir_ = reservoir
-        self.sfa_, self.ica_ = sfa, ica
-        self.sfa_slowness_ = sfa.slowness_.copy()
-        self.n_features_in_ = n_u
-        self.output_std_, self.output_peak_ = output_std, output_peak
-        self._compile()
-        self.reset_state()
-        return self
+        """Read a model written by :meth:`save`, trusting nothing: the format tag, the
+        parameters (checked like the constructor's), and every array's dtype, shape, finiteness
+        and consistency. A damaged file raises :class:`~hippo.io.CorruptFileError` naming the
+        problem; nothing is half-loaded."""
+        return load_model(cls, path)
 
     # ------------------------------------------------------------------ misc
     def _check_fitted(self) -> None:
@@ -668,46 +434,3 @@ def _output_stats(ica: FastICA, Y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         std[j] = col.std()
         peak[j] = np.percentile(col, 99.9, overwrite_input=True)
     return std, peak
-
-
-def fit_leak_sweep(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams | None = None,
-                   *, workers: int | None = None, **overrides: Any) -> list[RCSFAICA]:
-    """Fit one :class:`RCSFAICA` per leak configuration over **one** reservoir (same weights).
-
-    The configurations are harvested together, up to 16 at a time (one matrix-matrix product
-    per tick for the batch, BLAS on ``workers`` threads); then ``workers`` threads (default: the
-    usable cores), each with single-threaded BLAS, fit SFA and ICA for one configuration after
-    another. ``leaks`` is a sequence of leak specs (each a float, k floats, or N floats). Returns
-    the fitted models, in the order of ``leaks``, whose ``params.leak`` is the configuration
-    (as given).
-    """
-    base = replace(params or RCSFAICAParams(), **overrides)
-    if not base.use_reservoir:
-        raise ValueError("a leak sweep needs use_reservoir=True")
-    if len(leaks) == 0:
-        raise ValueError("leaks is empty")
-    template = RCSFAICA(base)
-    U = template._check_U(U)
-    res = template._build_reservoir()
-    N = base.n_reservoir
-    A = np.stack([expand_leak(lk, N) for lk in leaks])
-    Ud = template._decimator().offline(U)
-    k = min(n_workers(workers), len(leaks))
-    states: list[np.ndarray] = []
-    for g in range(0, len(leaks), _SWEEP_BATCH):
-        S = res.run(Ud, leak=A[g:g + _SWEEP_BATCH], threads=k)  # (b, T, N)
-        states.extend(S)
-
-    def fit_one(b: int) -> RCSFAICA:
-        lk = leaks[b]
-        lk_param = float(lk) if np.ndim(lk) == 0 else tuple(float(v) for v in np.ravel(lk))
-        m = RCSFAICA(base, leak=lk_param)
-        m.reservoir_ = Reservoir.from_weights(res.W_in, res.W_res, A[b],
-                                              spectral_radius=base.spectral_radius,
-                                              dtype=base.dtype, device=base.device)
-        m.n_features_in_ = base.n_inputs
-        Xb = states[b]
-        return m._fit_features(np.concatenate([Ud.astype(Xb.dtype), Xb], axis=1))
-
-    with _torch_threads(1):
-        return parallel_map(fit_one, range(len(leaks)), k)

@@ -27,7 +27,8 @@ import numpy as np
 from scipy.stats import spearmanr
 
 from hippo._checks import check_finite
-from hippo.perception.place_cells import RCSFAICA, RCSFAICAParams, fit_leak_sweep
+from hippo.perception.leak_sweep import fit_leak_sweep
+from hippo.perception.place_cells import RCSFAICA, RCSFAICAParams
 
 
 def normalised_slowness(Y: np.ndarray) -> np.ndarray:

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from hippo.cognitive_map import DriveParams, Drives, TransitionGraph
-from hippo.cognitive_map.graph import random_transition_graph
 from hippo.cognitive_map.planner import Planner, PlannerParams, propagate
+from hippo.cognitive_map.synthetic import random_transition_graph
 from hippo.io import CorruptFileError
 
 

@@ -9,7 +9,8 @@ import pytest
 from scipy.stats import circmean
 
 from hippo.cognitive_map import WAIT, Action, TransitionGraph
-from hippo.cognitive_map.graph import NODE_ATTRS, random_transition_graph
+from hippo.cognitive_map.graph import NODE_ATTRS
+from hippo.cognitive_map.synthetic import random_transition_graph
 from hippo.io import CorruptFileError
 
 

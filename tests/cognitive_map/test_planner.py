@@ -21,7 +21,7 @@ from hippo.cognitive_map import (
     propagate,
     propagate_reference,
 )
-from hippo.cognitive_map.graph import random_transition_graph, transitions_from_state_edges
+from hippo.cognitive_map.synthetic import random_transition_graph, transitions_from_state_edges
 
 METHODS = ("states", "transitions")
 
