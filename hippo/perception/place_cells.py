@@ -52,7 +52,7 @@ import numpy as np
 
 from hippo._checks import check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
-from hippo._threads import single_threaded_blas
+from hippo._threads import blas_budget, blas_threads, single_threaded_blas
 from hippo.perception.ica import FastICA
 from hippo.perception.place_cell_files import FORMAT, load_model, save_model
 from hippo.perception.place_cell_params import ICANN09, SMC09, RCSFAICAParams
@@ -191,7 +191,15 @@ class RCSFAICA(ParamsEstimator):
         numbers as the held fit to float rounding (ICA: within its ``tol``). Default (None):
         stream when the states would take more than 256 MB. Applies to the linear SFA of a
         reservoir (the other forms hold their features).
+
+        Threads follow the one rule (:mod:`hippo._threads`): the stages that run one thing
+        (drawing the reservoir, solving SFA, ICA) get the free cores as BLAS threads; on busy
+        cores that is one thread, never a BLAS pool spinning against other processes.
         """
+        with blas_threads(blas_budget(1)):
+            return self._fit(U, stream)
+
+    def _fit(self, U: np.ndarray, stream: bool | None) -> RCSFAICA:
         U = self._check_U(U, fitting=True)
         self._check_trainable(U)
         p = self.params
