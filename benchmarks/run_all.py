@@ -201,7 +201,12 @@ def whole_fit(size: dict) -> list[dict]:
         SkICA(n_components=4, fun="cube", algorithm="parallel", whiten="unit-variance",
               random_state=0).fit(Y)
 
-    b = best_of({"hippo": lambda: model.fit(Utr), "peer": peer}, size["fit_rounds"])
+    from hippo._threads import free_cores
+
+    # both under the same BLAS thread limit (the free cores): hippo's fit keeps to it on its
+    # own; unlimited, the peers' BLAS pools spin against other work on busy cores
+    with threadpool_limits(free_cores()):
+        b = best_of({"hippo": lambda: model.fit(Utr), "peer": peer}, size["fit_rounds"])
     return [row(f"whole fit, {len(Utr):,} ticks, N = 600", b["hippo"], b["peer"],
                 "ReservoirPy + eigh SFA + sklearn FastICA", "s", "peer/hippo", ">= 3",
                 b["peer"][0] / b["hippo"][0] >= 3,
