@@ -102,7 +102,7 @@ def agent(size: dict) -> list[dict]:
             loop = (ag[0] + wo[0], ag[1] + wo[1])
             x = (0.2 / loop[0], 0.2 / loop[1])
             rows.append({**row(f"closed loop, x real time ({kind})", None, None, "real time",
-                               "x", "hippo/peer", ">= 1500", x[0] >= 1500,
+                               "x", "real/loop", ">= 1500", x[0] >= 1500,
                                f"agent + world {loop[0] * 1e6:.0f} µs/tick at dt = 0.2 s; 1,500 x "
                                "needs <= 133 µs"), "ratio_wall": x[0], "ratio_cpu": x[1]})
     return rows
