@@ -158,7 +158,10 @@ class Tick:
     integrator's heading estimate; move_since, move_limit: when the current move was chosen
     and how long it may take (s; None unless moving or approaching with a heading); settling:
     the robot was just lifted and explores while its place cells recover; omitted: the
-    transitions whose predicted event did not come this tick (non-occurrence).
+    transitions whose predicted event did not come this tick (non-occurrence); novel: no place
+    cell reaches the state layer's ``recruit_threshold`` (HIREL's cue to recruit a new place:
+    the robot is somewhere its place cells do not know; prototypes recruit a cell for it when
+    their own ``recruit_threshold`` is > 0).
     """
 
     t: float
@@ -172,6 +175,7 @@ class Tick:
     move_limit: float | None
     settling: bool
     omitted: tuple[Transition, ...]
+    novel: bool = False
 
 
 class Brain:
@@ -311,7 +315,7 @@ class Brain:
                 self._settle_until = self.t  # re-localised: decide from this tick on
         if self.t < self._settle_until:
             self.decide.mode = Mode.EXPLORE
-            return self._tick(ev.changed, settling=True)
+            return self._tick(ev.changed, settling=True, novel=ev.novel)
         if self.state is None:  # (re)start: take the winner as it is, no transition
             self.state, self.entered_at, self._entry_pose = ev.winner, self.t, self.pi.pose
             self._entries[ev.winner] = (self.t, self.pi.pose)
@@ -321,9 +325,9 @@ class Brain:
         self.decide.recognise_stop()
         self.decide.check_wait()
         self.drives.step(p.dt)
-        return self._tick(ev.changed)
+        return self._tick(ev.changed, novel=ev.novel)
 
-    def _tick(self, event: bool, *, settling: bool = False) -> Tick:
+    def _tick(self, event: bool, *, settling: bool = False, novel: bool = False) -> Tick:
         d = self.decide
         limit = None
         if not settling and d.mode in (Mode.MOVE, Mode.APPROACH) and d.heading is not None:
@@ -331,7 +335,7 @@ class Brain:
             limit = self.p.move_timeout * float(delay or self.p.default_delay) + self.p.move_margin
         return Tick(self.t, self.state, bool(event), d.mode, d.current, d.heading,
                     self.pi.heading, d.current_since, limit, settling,
-                    tuple(self.non_occurrence))
+                    tuple(self.non_occurrence), bool(novel))
 
     def abandon(self) -> None:
         """The motor layer gave up the current move (it took too long): explore."""

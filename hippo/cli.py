@@ -107,7 +107,7 @@ def _main(argv: list[str]) -> int:
         run_scenario("demo", rest)
         return 0
     if cmd == "sweep":
-        from hippo.sweep import sweep_main
+        from hippo.sweep_cli import sweep_main
 
         return sweep_main(rest)
     if cmd == "record":

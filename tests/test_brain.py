@@ -13,7 +13,7 @@ from hippo.types import Mode, Observation, StateKind
 
 DT = 0.2
 PLACES = {"A": np.array([1.0, 0.0, 0.0]), "B": np.array([0.0, 1.0, 0.0]),
-          "C": np.array([0.0, 0.0, 1.0])}
+          "C": np.array([0.0, 0.0, 1.0]), "nowhere": np.array([0.1, 0.05, 0.0])}
 
 
 class Stub:
@@ -111,6 +111,20 @@ def test_tick_is_a_small_frozen_record_and_settling_explores():
     ticks = run.ticks(6, "B", moving=True)
     assert all(t.settling and t.mode == Mode.EXPLORE and t.winner is None for t in ticks[:4])
     assert not ticks[-1].settling and ticks[-1].winner is not None
+
+
+def test_a_tick_says_when_no_place_cell_knows_the_place():
+    """Tick.novel: no place activity reaches the state layer's recruit_threshold (HIREL's cue
+    to recruit a place), whether settling or deciding."""
+    brain, run = make()
+    assert not any(t.novel for t in run.ticks(5, "B", moving=True))
+    away = run.ticks(15, "nowhere", moving=True)  # the layer's filter lets B fade first
+    assert not away[0].novel and all(t.novel for t in away[-5:])
+    assert not run.ticks(15, "A", moving=True)[-1].novel
+    brain.p = dataclasses.replace(brain.p, settle_time=1.0)
+    brain.lifted()
+    settling = run.ticks(4, "nowhere", moving=True)
+    assert all(t.settling for t in settling) and settling[-1].novel
 
 
 def test_rewards_link_the_sound_drive_and_extinction_weakens_the_link():

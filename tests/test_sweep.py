@@ -16,7 +16,8 @@ distributed = pytest.importorskip("distributed")
 
 from hippo._threads import blas_budget  # noqa: E402
 from hippo.io import load_json  # noqa: E402
-from hippo.sweep import Cell, _seeds, grid, run_sweep, sweep_main  # noqa: E402
+from hippo.sweep import Cell, grid, run_sweep  # noqa: E402
+from hippo.sweep_cli import _seeds, sweep_main  # noqa: E402
 
 
 def square_task(cell: Cell, out: str) -> dict:

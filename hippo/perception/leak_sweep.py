@@ -9,10 +9,10 @@ from typing import Any
 import numpy as np
 
 from hippo._threads import n_workers, parallel_map
+from hippo.perception.backends import _num_threads as _torch_threads
 from hippo.perception.place_cell_params import RCSFAICAParams
 from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.reservoir import Reservoir, expand_leak
-from hippo.perception.reservoir import _num_threads as _torch_threads
 
 __all__ = ["fit_leak_sweep"]
 

@@ -16,8 +16,9 @@ import re
 from dataclasses import dataclass
 
 from hippo._checks import check_choice, check_fields, check_int
+from hippo.perception.backends import _check_device, _np_dtype
 from hippo.perception.ica import ICAParams
-from hippo.perception.reservoir import ReservoirParams, _check_device, _leak_param, _np_dtype
+from hippo.perception.reservoir import ReservoirParams, _leak_param
 from hippo.perception.sfa import SFAParams
 
 __all__ = ["ICANN09", "SMC09", "RCSFAICAParams"]

@@ -38,9 +38,7 @@ paired with ``U[t]`` to form the SFA input ``[u(t); x(t+1)]``.
 from __future__ import annotations
 
 import numbers
-import sys
-from collections.abc import Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -48,6 +46,7 @@ import numpy as np
 
 from hippo._checks import check_fields, check_finite, check_int, check_positive, check_range
 from hippo._threads import blas_threads
+from hippo.perception.backends import _check_device, _import_torch, _np_dtype, _num_threads
 
 LeakSpec = float | Sequence[float] | np.ndarray
 
@@ -154,54 +153,6 @@ def _loop_batched_np(drive: np.ndarray, W: np.ndarray, A: np.ndarray, x: np.ndar
         pre += tmp
         np.tanh(pre, out=xT)
         states[:, t] = xT.T
-
-
-def _import_torch() -> Any:
-    """torch, or a clear error saying how to install it (it is an optional dependency)."""
-    try:
-        import torch
-    except ImportError as exc:  # pragma: no cover - depends on the installation
-        raise ImportError("the torch backend of Reservoir needs PyTorch, an optional dependency: "
-                          "pip install 'hippo[torch]' (see the README for the build that "
-                          "matches your GPU)") from exc
-    return torch
-
-
-@contextmanager
-def _num_threads(n: int | None) -> Iterator[None]:
-    """Temporarily set torch's intra-op thread count (no-op for ``None`` or without torch)."""
-    torch = sys.modules.get("torch")
-    if n is None or torch is None or n == torch.get_num_threads():
-        yield
-        return
-    old = torch.get_num_threads()
-    torch.set_num_threads(n)
-    try:
-        yield
-    finally:
-        torch.set_num_threads(old)
-
-
-def _np_dtype(dtype: Any) -> type[np.floating]:
-    """numpy float type from ``"float32"``/``"float64"`` (a numpy or torch dtype is accepted)."""
-    name = str(dtype).removeprefix("torch.")
-    if name not in ("float32", "float64"):
-        raise ValueError(f"dtype must be 'float32' or 'float64', got {dtype!r}")
-    return np.float32 if name == "float32" else np.float64
-
-
-def _check_device(device: Any) -> str:
-    """``"cpu"``, or a CUDA device that exists (which needs torch built with CUDA)."""
-    name = str(device)
-    if name == "cpu":
-        return name
-    if not (name == "cuda" or name.startswith("cuda:")):
-        raise ValueError(f"device must be 'cpu' or 'cuda[:N]', got {device!r}")
-    torch = _import_torch()
-    if not torch.cuda.is_available():
-        raise ValueError(f"device={name!r} but this torch build ({torch.__version__}) sees no "
-                         "CUDA GPU; use device='cpu' (the numpy loop)")
-    return name
 
 
 @dataclass

@@ -1,0 +1,92 @@
+"""``hippo sweep SCENARIO``: the command line of :mod:`hippo.sweep` (a grid of scenario runs on
+Dask distributed)."""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Sequence
+from pathlib import Path
+
+from hippo.cli_args import Parser, integer, out_dir
+from hippo.io import load_json
+from hippo.sweep import grid, run_sweep
+
+__all__ = ["sweep_main"]
+
+
+def _seeds(text: str) -> list[int]:
+    """``0-3`` or ``0,2,5`` (or both: ``0-3,10``)."""
+    seeds: list[int] = []
+    for part in text.split(","):
+        part = part.strip()
+        if not part:
+            continue
+        try:
+            if "-" in part[1:]:
+                a, b = part.split("-", 1) if not part.startswith("-") else (part, part)
+                seeds += range(int(a), int(b) + 1)
+            else:
+                seeds.append(int(part))
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"seeds must look like 0-3 or 0,2,5, got {text!r}") from None
+    if not seeds:
+        raise argparse.ArgumentTypeError(f"no seeds in {text!r}")
+    return seeds
+
+
+def sweep_main(argv: Sequence[str]) -> int:
+    """``hippo sweep SCENARIO [options] [-- scenario options for every cell]``."""
+    from hippo.runner import SCENARIOS, scenario_parser
+
+    argv = list(argv)
+    extra: list[str] = []
+    if "--" in argv:
+        i = argv.index("--")
+        argv, extra = argv[:i], argv[i + 1:]
+    ap = Parser(
+        prog="hippo sweep", description="Run a scenario over seeds x parameters on Dask "
+        "distributed (a LocalCluster unless --scheduler is given); resumable.",
+        epilog="Options after -- go to every cell's scenario (e.g. -- --quick).")
+    ap.add_argument("scenario", choices=sorted(SCENARIOS))
+    ap.add_argument("--seeds", type=_seeds, default=[0], help="e.g. 0-3 or 0,2,5 (default 0)")
+    ap.add_argument("--param", nargs="+", action="append", default=[], metavar=("NAME", "VALUE"),
+                    help="a scenario option and its values, e.g. --param leak 0.05,0.15 "
+                    "0.11,0.14 (repeat for more; the grid is every combination)")
+    ap.add_argument("--out", type=out_dir, default=None,
+                    help="output folder (default out/sweep-SCENARIO)")
+    ap.add_argument("--workers", type=integer(1, 1024), default=None,
+                    help="LocalCluster worker processes (default: the free cores, i.e. the "
+                    "usable cores less the load of other processes)")
+    ap.add_argument("--scheduler", default=None, help="address of an existing Dask scheduler")
+    ap.add_argument("--retries", type=integer(0, 100), default=2,
+                    help="extra attempts of a failing cell")
+    ap.add_argument("--metric", default=None, help="metric of the summary figure")
+    ap.add_argument("--parquet", action="store_true", help="also write results.parquet")
+    a = ap.parse_args(argv)
+    if a.workers is not None and a.workers < 1:
+        ap.error(f"--workers must be >= 1, got {a.workers}")
+    if a.retries < 0:
+        ap.error(f"--retries must be >= 0, got {a.retries}")
+    params: dict[str, list[str]] = {}
+    parser, _ = scenario_parser(a.scenario)
+    known = {s.lstrip("-") for act in parser._actions for s in act.option_strings}
+    for item in a.param:
+        name, values = item[0].lstrip("-"), item[1:]
+        if name not in known or name in ("out", "seed"):
+            ap.error(f"--param {name}: not an option of scenario {a.scenario!r} "
+                     f"(choose from: {', '.join(sorted(known - {'out', 'seed', 'h', 'help'}))})")
+        if not values:
+            ap.error(f"--param {name} needs at least one value")
+        params[name] = values
+    cells = grid(a.scenario, a.seeds, params, extra)
+    out = Path(a.out or f"out/sweep-{a.scenario}")
+    res = run_sweep(cells, out, workers=a.workers, scheduler=a.scheduler, retries=a.retries,
+                    metric=a.metric, parquet=a.parquet)
+    print(f"{len(cells)} cells: {res.ran} run, {res.skipped} already done, "
+          f"{len(res.failed)} failed; table {out / 'results.csv'}")
+    for cid in res.failed:
+        rec = load_json(out / "cells" / f"{cid}.json")
+        print(f"  FAILED {cid} (seed {rec['seed']}, {rec['params']}) after {rec['attempts']} "
+              f"attempt(s): {rec['error']}")
+    return 0 if res.ok else 1
