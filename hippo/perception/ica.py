@@ -364,3 +364,23 @@ class FastICA(ParamsEstimator):
         p = self.params
         return (f"FastICA(n_components={p.n_components}, algorithm={p.algorithm!r}, "
                 f"n_restarts={p.n_restarts}, score={p.score!r}, seed={p.seed})")
+
+
+#: rows per chunk when the ICA outputs' statistics are taken
+_OUT_CHUNK = 65536
+
+
+def output_stats(ica: FastICA, Y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Standard deviation and 99.9th percentile of each ICA output on its training input
+    ``Y`` (T, n_sfa), one output at a time (one float64 column of length T alive, not the
+    whole (T, n_ica) output)."""
+    k = ica.components_.shape[0]
+    std, peak = np.empty(k), np.empty(k)
+    col = np.empty(Y.shape[0])
+    for j in range(k):
+        for t0 in range(0, Y.shape[0], _OUT_CHUNK):
+            y = np.asarray(Y[t0:t0 + _OUT_CHUNK], dtype=np.float64)
+            col[t0:t0 + _OUT_CHUNK] = (y - ica.mean_) @ ica.components_[j]
+        std[j] = col.std()
+        peak[j] = np.percentile(col, 99.9, overwrite_input=True)
+    return std, peak

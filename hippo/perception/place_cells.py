@@ -53,7 +53,7 @@ import numpy as np
 from hippo._checks import check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo._threads import blas_budget, blas_threads, single_threaded_blas
-from hippo.perception.ica import FastICA
+from hippo.perception.ica import FastICA, output_stats
 from hippo.perception.place_cell_files import FORMAT, load_model, save_model
 from hippo.perception.place_cell_params import ICANN09, SMC09, RCSFAICAParams
 from hippo.perception.resample import Decimator, hold
@@ -77,8 +77,6 @@ class InputRangeWarning(RuntimeWarning):
 _HARVEST_CHUNK = 2048
 #: a fit holds the reservoir states up to this size, and streams them beyond (``fit(stream=)``)
 _HOLD_BYTES = 256 * 2**20
-#: rows per chunk when the ICA outputs' statistics are taken
-_OUT_CHUNK = 65536
 
 
 class RCSFAICA(ParamsEstimator):
@@ -302,7 +300,7 @@ class RCSFAICA(ParamsEstimator):
         p = self.params
         self.sfa_slowness_ = self.sfa_.slowness_.copy()
         self.ica_ = FastICA(p.ica_params()).fit(Y)
-        self.output_std_, self.output_peak_ = _output_stats(self.ica_, Y)
+        self.output_std_, self.output_peak_ = output_stats(self.ica_, Y)
         self._compile()
         self.reset_state()
         return self
@@ -426,19 +424,3 @@ class RCSFAICA(ParamsEstimator):
                if p.use_reservoir else "no reservoir")
         return (f"RCSFAICA(n_inputs={p.n_inputs}, {res}, n_sfa={p.n_sfa}, n_ica={p.n_ica}, "
                 f"downsample={p.downsample}, seed={p.seed})")
-
-
-def _output_stats(ica: FastICA, Y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Standard deviation and 99.9th percentile of each ICA output on its training input
-    ``Y`` (T, n_sfa), one output at a time (one float64 column of length T alive, not the
-    whole (T, n_ica) output)."""
-    k = ica.components_.shape[0]
-    std, peak = np.empty(k), np.empty(k)
-    col = np.empty(Y.shape[0])
-    for j in range(k):
-        for t0 in range(0, Y.shape[0], _OUT_CHUNK):
-            y = np.asarray(Y[t0:t0 + _OUT_CHUNK], dtype=np.float64)
-            col[t0:t0 + _OUT_CHUNK] = (y - ica.mean_) @ ica.components_[j]
-        std[j] = col.std()
-        peak[j] = np.percentile(col, 99.9, overwrite_input=True)
-    return std, peak

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+import hippo.perception.ica as ica_module
 import hippo.perception.place_cells as pc
 from hippo.perception.place_cells import RCSFAICA
 
@@ -75,7 +76,7 @@ def test_output_stats_equal_those_of_the_whole_output(monkeypatch):
     X = m.features(U)
     Y = m.sfa_.transform(X)
     S = m.ica_.transform(Y)
-    monkeypatch.setattr(pc, "_OUT_CHUNK", 333)
-    std, peak = pc._output_stats(m.ica_, Y.astype(np.float32))
+    monkeypatch.setattr(ica_module, "_OUT_CHUNK", 333)
+    std, peak = ica_module.output_stats(m.ica_, Y.astype(np.float32))
     np.testing.assert_allclose(std, S.std(axis=0), rtol=1e-5)
     np.testing.assert_allclose(peak, np.percentile(S, 99.9, axis=0), rtol=1e-5)
