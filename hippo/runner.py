@@ -27,6 +27,7 @@ SCENARIOS: dict[str, str] = {
     "place-preference": "hippo.scenarios.place_preference",
     "patrol": "hippo.scenarios.patrol",
     "rooms": "hippo.scenarios.rooms",
+    "deployment": "hippo.scenarios.deployment",
 }
 #: scenario name -> what it does, in one line (``hippo list``)
 DESCRIPTIONS: dict[str, str] = {
@@ -42,6 +43,8 @@ DESCRIPTIONS: dict[str, str] = {
               "alone",
     "rooms": "place cells in generated multi-room flats: one cell per room, decoding over "
              "rooms, kidnapping, the supervised ceiling",
+    "deployment": "the learned patrol alone for hours; failures counted the RatSLAM way, "
+                  "health sampled, resumable after a crash",
 }
 
 

@@ -10,6 +10,9 @@
 - :class:`Route`, :class:`LapCounter`, :class:`AngleLaps`, :func:`progress_along`,
   :func:`route_passes`, :func:`passes`, :func:`stops` (``routes.py``) — routes through an
   arena's checkpoints, progress along them, laps, checkpoint passes and stops.
+- :class:`PatrolCourse`, :class:`PatrolPhase`, :func:`patrol_route`, :func:`check_patrol`,
+  :func:`pass_report`, ``ARENA_CHECKPOINTS``, ``HIREL_WAITS`` (``patrol.py``) — a timed patrol
+  on any arena: its lesson, its laps and what each pass by a checkpoint gave.
 - :class:`Log`, :func:`event_arrays`, :func:`enum_names` (``log.py``) — the per-tick log and
   its files.
 
@@ -18,6 +21,15 @@ A task is a short phase script on these (see ``scenarios/patrol_square.py``).
 
 from hippo.tasks.explore import PAUSE_RATE, PLACE_STATES, Tour, explore, learn_map, make_places
 from hippo.tasks.log import Log, enum_names, event_arrays
+from hippo.tasks.patrol import (
+    ARENA_CHECKPOINTS,
+    HIREL_WAITS,
+    PatrolCourse,
+    PatrolPhase,
+    check_patrol,
+    pass_report,
+    patrol_route,
+)
 from hippo.tasks.routes import (
     AngleLaps,
     LapCounter,
@@ -31,7 +43,9 @@ from hippo.tasks.session import Session
 from hippo.tasks.teaching import Experimenter
 
 __all__ = [
-    "PAUSE_RATE", "PLACE_STATES", "AngleLaps", "Experimenter", "LapCounter", "Log", "Route",
-    "Session", "Tour", "enum_names", "event_arrays", "explore", "learn_map", "make_places",
-    "passes", "progress_along", "route_passes", "stops",
+    "ARENA_CHECKPOINTS", "HIREL_WAITS", "PAUSE_RATE", "PLACE_STATES", "AngleLaps",
+    "Experimenter", "LapCounter", "Log", "PatrolCourse", "PatrolPhase", "Route", "Session",
+    "Tour", "check_patrol", "enum_names", "event_arrays", "explore", "learn_map",
+    "make_places", "pass_report", "passes", "patrol_route", "progress_along", "route_passes",
+    "stops",
 ]

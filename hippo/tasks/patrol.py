@@ -1,0 +1,297 @@
+"""A timed patrol as a library: checkpoints on a route through any arena, the lesson (a loop on
+the leash, a loop reproduced, the waits taught by blocks), autonomous laps, and what each pass
+by a checkpoint gave.
+
+- ``ARENA_CHECKPOINTS`` — default checkpoints of the built-in arenas; ``HIREL_WAITS`` — HIREL's
+  taught waits (s).
+- :func:`patrol_route` — the leash route through the checkpoints; :func:`check_patrol` — the
+  checks a user's checkpoints and waits must pass (free floor, reachable, 40 cm apart along
+  the route, one wait each).
+- :class:`PatrolPhase` — the phases of the patrol scenarios (their names go into ``run.npz``).
+- :class:`PatrolCourse` — the phases on a :class:`~hippo.tasks.Session`: :meth:`teach`,
+  :meth:`patrol`, :meth:`adapt`, :meth:`kidnap`, and the lap bookkeeping behind them.
+- :func:`pass_report` — per checkpoint, from a run's per-tick arrays: the passes during a
+  phase, the stop the robot chose at each (the first one counts), extra and misplaced stops,
+  and the waits against the learned ones.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from enum import IntEnum
+from typing import Any
+
+import numpy as np
+
+from hippo.progress import Progress
+from hippo.sim import arenas
+from hippo.tasks.routes import LapCounter, Route, route_passes
+from hippo.tasks.session import Session
+from hippo.types import Mode, StateKind
+
+__all__ = ["ARENA_CHECKPOINTS", "HIREL_WAITS", "PatrolCourse", "PatrolPhase", "check_patrol",
+           "pass_report", "patrol_route"]
+
+#: the arenas a patrol runs in, with their default checkpoints (cm): patrol-course's are its
+#: landmarks checkpoint-1..3 on the corridor loop; the others' were placed in distinct parts
+#: of each arena (room A and both ends of room B; three corridors of the goal arena; three
+#: maze cells on a 650 cm round trip from the start)
+ARENA_CHECKPOINTS: dict[str, list[tuple[float, float]]] = {
+    "patrol-course": [(80.0, 11.0), (140.0, 56.0), (50.0, 105.0)],
+    "two-rooms": [(15.0, 65.0), (90.0, 20.0), (100.0, 70.0)],
+    "goal-arena": [(85.0, 15.0), (132.0, 76.0), (45.0, 136.0)],
+    "maze": [(20.0, 20.0), (140.0, 140.0), (220.0, 60.0)],
+}
+#: HIREL's three checkpoint waits (s); with n checkpoints the first n are the defaults
+HIREL_WAITS = [24.1, 19.1, 11.6, 16.0]
+#: a pass by a checkpoint: the robot's progress along the route within this many cm of it
+PASS_RADIUS = 30.0
+
+
+class PatrolPhase(IntEnum):
+    EXPLORATION = 0
+    LEASH = 1
+    REPRODUCTION = 2
+    CHECKPOINTS = 3
+    PATROL = 4
+    ADAPTATION = 5
+    KIDNAP = 6
+    DEPLOYMENT = 7
+
+
+def patrol_route(arena_name: str, checkpoints: Sequence[Sequence[float]]) -> Route:
+    """The leash route: the corridor loop of patrol-course with its own checkpoints, else the
+    arena's shortest paths through the checkpoints and back (8 cm clear of walls where it
+    can)."""
+    if arena_name == "patrol-course" and [tuple(map(float, c)) for c in checkpoints] == \
+            ARENA_CHECKPOINTS["patrol-course"]:
+        return Route(arenas.loop_waypoints())
+    return Route.through(arenas.get(arena_name), checkpoints, clearance=8.0)
+
+
+def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
+                 waits: Sequence[float]) -> Route:
+    """Raise ``ValueError`` naming the problem unless the checkpoints lie on free floor of the
+    arena (6 cm clear of every wall), are reachable from each other and are at least
+    ``2 * PASS_RADIUS`` + 10 cm apart along the route, with one wait per checkpoint; returns
+    the route."""
+    arena = arenas.get(arena_name)
+    if len(waits) != len(checkpoints):
+        raise ValueError(f"got {len(waits)} waits for {len(checkpoints)} checkpoints; give "
+                         "one wait per checkpoint")
+    for x, y in checkpoints:
+        if not arena.is_free(x, y, 6.0):
+            raise ValueError(f"checkpoint ({x:g}, {y:g}) is not free floor of arena "
+                             f"{arena_name!r} ({arena.width:g} x {arena.height:g} cm; a "
+                             "checkpoint needs 6 cm clear of every wall)")
+    route = patrol_route(arena_name, checkpoints)
+    s = sorted(route.progress(x, y) for x, y in checkpoints)
+    gaps = np.diff([*s, s[0] + route.length])
+    if gaps.min() < 40.0:
+        raise ValueError(f"two checkpoints are {gaps.min():.0f} cm apart along the route; "
+                         f"they need 40 cm (a pass is {PASS_RADIUS:g} cm either side)")
+    return route
+
+
+def pass_report(arrays: dict, route: Route, checkpoints: Sequence[Sequence[float]],
+                all_stops: list[dict], learned: Sequence[float | None], *, phase: int,
+                span: tuple[int, int] | None = None) -> list[dict]:
+    """Per checkpoint ``k``: its passes during ``phase`` (within ``span`` = ``[i0, i1)`` of the
+    arrays, if given), the first stop the robot chose for drive ``k`` in each pass
+    (``reproduced_waits_s``), further stops there for it (``extra_stops``), stops there for
+    another drive (``misplaced_stops``), and the waits' relative differences from
+    ``learned[k]`` (``rel_errors``)."""
+    lo, hi = span if span is not None else (0, len(arrays["t"]))
+    rows = []
+    for k, cp in enumerate(checkpoints):
+        runs = [(a, b) for a, b in route_passes(arrays, route, cp, phase=phase,
+                                                radius=PASS_RADIUS) if lo <= a and b <= hi]
+        here = [st for st in all_stops if st["checkpoint"] == k and st["phase"] == phase
+                and lo <= st["i0"] < hi]
+        per_pass = [[st["duration"] for st in here if a <= st["i0"] < b and st["drive"] == k]
+                    for a, b in runs]
+        rep = [d[0] for d in per_pass if d]
+        w = learned[k]
+        err = [abs(r - w) / w for r in rep] if w else []
+        rows.append({"passes": len(runs), "stops_made": len(rep), "reproduced_waits_s": rep,
+                     "extra_stops": sum(max(len(d) - 1, 0) for d in per_pass),
+                     "misplaced_stops": sum(1 for st in here if st["drive"] != k),
+                     "rel_errors": err})
+    return rows
+
+
+class PatrolCourse:
+    """The patrol's phases on one session: the robot, its teacher, the route and checkpoints.
+
+    ``names[k]`` is the drive of ``checkpoints[k]``. Laps are counted by progress along the
+    route (:class:`LapCounter`); a phase that counts laps ends at the route's *quiet point*,
+    the point farthest (along the route) from every checkpoint, so that a stop at a checkpoint
+    never straddles the end of a phase."""
+
+    def __init__(self, s: Session, route: Route, checkpoints: Sequence[Sequence[float]],
+                 names: Sequence[str]) -> None:
+        self.s, self.agent, self.dt = s, s.agent, s.world.dt
+        self.route = route
+        self.checkpoints = [tuple(map(float, c)) for c in checkpoints]
+        self.names = list(names)
+        self.loop = LapCounter(route)
+        L = route.length
+        s_cp = np.array([route.progress(*c) for c in self.checkpoints])
+        grid = np.arange(0.0, L, 1.0)
+        far = np.min(np.abs((grid[:, None] - s_cp[None, :] + L / 2) % L - L / 2), axis=1)
+        self.quiet = float(grid[int(np.argmax(far))])
+
+    @property
+    def lap_s(self) -> float:
+        """Time allowed for one lap: 3 x the route at 5 cm/s, at least 600 s."""
+        return max(600.0, 3.0 * self.route.length / 5.0)
+
+    def laps(self) -> float:
+        return self.loop.update(*self.s.truth.pose[:2])
+
+    def lap_until(self, target: float):
+        return lambda o: self.laps() >= target
+
+    def laps_to_quiet(self, loops: int, point: float | None = None) -> float:
+        """The lap count at which ``loops`` whole laps from the next quiet point (or the next
+        ``point``, a progress along the route) are done."""
+        turns = self.laps()
+        L = self.route.length
+        target = self.quiet if point is None else point
+        ahead = ((target - self.loop.progress) % L) / L  # type: ignore[operator]
+        return turns + ahead + loops
+
+    def just_past_last(self) -> float:
+        """The progress 10 cm past the checkpoint before the quiet point."""
+        L = self.route.length
+        s_cp = [self.route.progress(*c) for c in self.checkpoints]
+        last = min(s_cp, key=lambda v: (self.quiet - v) % L)  # the nearest before it
+        return last + 10.0
+
+    def state_kind(self) -> StateKind | None:
+        agent = self.agent
+        return agent.kind(agent.state) if agent.state is not None else None
+
+    def near(self, point: Sequence[float], radius: float) -> bool:
+        return math.dist(self.s.truth.pose[:2], point) < radius
+
+    def learned_waits(self) -> list[float | None]:
+        """Per checkpoint, the median learned delay of the transitions its drive is linked to
+        (the wait the robot will make there), or None."""
+        cells, drives = self.agent.cells, self.agent.drives
+        out: list[float | None] = []
+        for n in self.names:
+            delays = [cells.learned_delay(t) for t in drives.links(n) if t in cells.transitions]
+            out.append(float(np.median(delays)) if delays else None)
+        return out
+
+    def teach(self, waits: Sequence[float]) -> float:
+        """Settle, one loop on the leash, one loop reproduced alone, then the checkpoints
+        taught by blocks; returns the fraction of the loop reproduced."""
+        s, agent, dt = self.s, self.agent, self.dt
+        # let the place cells settle on the course before the leash
+        agent.lifted()
+        s.run(int(agent.p.settle_time / dt) + 1)
+        # one loop on the leash, counter-clockwise from the nearest waypoint ahead
+        s.teacher.lead(self.route.loop_from(s.truth.pose))
+        self.laps()
+        with Progress(1, "leash") as bar:
+            s.run(6000, until=lambda o: not s.teacher.leading)
+            bar.update()
+        # reproduction: no drive is active, the only known way on is the taught loop
+        agent.drives.step(0.0)
+        s.phase, start_turns = PatrolPhase.REPRODUCTION, self.laps()
+        with Progress(1, "reproduction") as bar:
+            s.run(int(max(400.0, 3.0 * self.route.length / 5.0) / dt),
+                  until=self.lap_until(start_turns + 1.0))
+            reproduced = self.loop.turns - start_turns
+            bar.update()
+        # checkpoints: block the robot at each for its wait, reward its drive as it ends
+        s.phase = PatrolPhase.CHECKPOINTS
+        with Progress(len(self.checkpoints), "checkpoints") as bar:
+            for k, c in enumerate(self.checkpoints):
+                s.trial = k
+                s.run(int(300 / dt), until=lambda o, c=c: self.near(c, 12.0))
+                s.block(waits[k])
+                agent.reward(self.names[k])
+                s.run(int(10 / dt),
+                      until=lambda o: self.state_kind() not in (None, StateKind.STILL))
+                bar.update()
+        return reproduced
+
+    def patrol(self, loops: int) -> float:
+        """Every drive up, ``loops`` laps alone; returns the laps completed."""
+        s = self.s
+        for d in self.names:
+            self.agent.drives.set_level(d, 1.0)
+        s.phase, start_turns = PatrolPhase.PATROL, self.laps()
+        # the first lap ends at the quiet point after a whole loop (or a little more)
+        end = self.laps_to_quiet(1)
+        with Progress(loops, "patrol") as bar:
+            for k in range(loops):
+                s.trial = k
+                s.run(int(self.lap_s / self.dt), until=self.lap_until(end + k))
+                bar.update()
+        return min(self.loop.turns - start_turns, float(loops))
+
+    def adapt(self, waits: Sequence[float], arena: Any) -> tuple[float, float, int, int]:
+        """A longer block at checkpoint 1, an early leash restart at checkpoint 2, then a loop
+        and a bit alone; returns the two taught waits and the log rows of that loop."""
+        s, agent, dt = self.s, self.agent, self.dt
+        longer = waits[0] + 8.0
+        c1, c2 = self.checkpoints[0], self.checkpoints[1]
+        # the teacher holds the robot when it stops at checkpoint 1 by itself: its stillness
+        # lasts `longer` s instead of the learned wait (if it passes without stopping, it is
+        # held where the checkpoint was taught, as in teaching)
+        s.phase, s.trial = PatrolPhase.ADAPTATION, 0
+        s.run(int(400 / dt), until=lambda o: self.near(c1, 30.0) and (
+            self.state_kind() == StateKind.STILL or agent.mode in (Mode.APPROACH, Mode.WAIT)
+            or self.near(c1, 12.0)))
+        if agent.mode == Mode.APPROACH:  # about to stop: let it
+            s.run(int(20 / dt), until=lambda o: agent.mode != Mode.APPROACH)
+        s.block(longer, extra=10.0)
+        s.trial = 1
+        s.run(int(400 / dt),
+              until=lambda o: self.state_kind() == StateKind.STILL and self.near(c2, 30.0))
+        shorter = waits[1] / 2
+        s.run(int(shorter / dt))
+        # the leash restarts it early: led 30 cm on along the route
+        ahead = self.route.at(self.route.progress(*c2) + 30.0)
+        _, path = arena.shortest_path(s.truth.pose[:2], ahead[:2])
+        s.lead(path, limit=2000)
+        s.trial = 2
+        i_adapt = len(s.log)
+        # one loop and a bit: it starts just past checkpoint 2, which it must meet again, and
+        # ends 10 cm past the checkpoint before the quiet point, once it has served it (the one
+        # served last, whose drive is then lowest: the kidnap's test)
+        lap_s = max(800.0, 4.0 * self.route.length / 5.0)
+        s.run(int(lap_s / dt),
+              until=self.lap_until(self.laps_to_quiet(1, self.just_past_last())))
+        return longer, shorter, i_adapt, len(s.log)
+
+    def kidnap(self) -> tuple[dict[str, float], str, dict | None]:
+        """Put the robot down on the route 75 cm before the checkpoint whose drive is lowest
+        (it was served last), facing along the loop: does it head on to a checkpoint with a
+        high drive instead of stopping at the one it was put before?"""
+        s, agent, names = self.s, self.agent, self.names
+        levels = {n: agent.drives.level(n) for n in names}
+        low = min(names, key=levels.get)  # type: ignore[arg-type]
+        # 75 cm before it along the route (the place code settles over the first 30 cm),
+        # facing along the route
+        kx, ky, heading = self.route.at(
+            self.route.progress(*self.checkpoints[names.index(low)]) - 75.0)
+        s.phase, s.trial = PatrolPhase.KIDNAP, 0
+        s.put(kx, ky, heading)
+        self.loop.reset()
+        t_kid = s.t
+        obs = s.run(int(300 / self.dt), until=lambda o: agent.mode == Mode.WAIT)
+        stop = None
+        if agent.mode == Mode.WAIT:
+            d = [math.dist(s.truth.pose[:2], c) for c in self.checkpoints]
+            served = agent.snapshot()["wait_drive"]
+            stop = {"nearest_checkpoint": names[int(np.argmin(d))],
+                    "distance_cm": float(min(d)), "t_after_kidnap_s": float(obs.t - t_kid),
+                    "drive": names[served] if served >= 0 else None}
+            s.run(int(5 / self.dt))
+        return levels, low, stop

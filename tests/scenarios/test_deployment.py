@@ -1,0 +1,77 @@
+"""The long deployment end to end, quick: failures counted, health flat, and a run killed at a
+random moment resumes to the same results as one never stopped."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+from hippo.cli import run_scenario
+
+ARGS = ["--quick", "--hours", "0.4", "--segment-min", "5", "--seed", "4"]
+
+
+def _without_memory(v):
+    """The metrics but the process memory (which differs between processes)."""
+    if isinstance(v, dict):
+        return {k: _without_memory(x) for k, x in v.items() if k not in ("rss_mb", "wall_s")}
+    if isinstance(v, list):
+        return [_without_memory(x) for x in v]
+    return v
+
+
+def test_quick_deployment_counts_tasks_and_stays_healthy(tmp_path):
+    m = run_scenario("deployment", [*ARGS, "--place-cells", "ground-truth",
+                                    "--out", str(tmp_path)])
+    segs = m["segments"]
+    assert 1 < len(segs) <= 5 and m["hours"] >= 0.4  # the last one ends past 0.4 h
+    # every lap of three checkpoints is three tasks; each segment ends at the quiet point
+    assert m["tasks"] == sum(g["tasks"] for g in segs) >= 3 * int(m["laps"]) - 3
+    assert m["laps"] > 5
+    # with ground-truth cells the patrol does nearly all its tasks (one that never stops: 0)
+    assert m["success_rate"] >= 0.9
+    assert m["failures_total"] == sum(m["failures"].values())
+    for k, w in enumerate(m["waits_s"]):   # the waits it makes are the waits it learned
+        assert w["n"] > 0 and w["mean"] == pytest.approx(m["learned_waits_s"][k], rel=0.05)
+    h0, h1 = m["health_start"], m["health_end"]
+    assert h1["finite"] and h1["states"] <= h0["states"] + 5
+    assert 0.0 <= h1["drive_min"] <= h1["drive_max"] <= 1.0
+    assert not (tmp_path / "resume").exists()       # a finished run leaves no checkpoints
+    assert (tmp_path / "deployment.png").stat().st_size > 0
+    assert json.loads((tmp_path / "segments.json").read_text()) == segs
+
+
+def test_a_killed_deployment_resumes_to_the_same_results(tmp_path):
+    whole = run_scenario("deployment", [*ARGS, "--out", str(tmp_path / "whole")])
+    out = tmp_path / "killed"
+    env = {**os.environ, "OMP_NUM_THREADS": "1", "HIPPO_QUIET": "1"}
+    cmd = [sys.executable, "-m", "hippo.cli", "run", "deployment", *ARGS, "--out", str(out)]
+    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    rng = np.random.default_rng(0)
+    try:  # kill it at a random moment after its second checkpoint
+        deadline = time.monotonic() + 300
+        while not (out / "resume" / "ckpt-000002").exists():
+            assert proc.poll() is None and time.monotonic() < deadline
+            time.sleep(0.01)
+        time.sleep(rng.uniform(0.0, 0.5))
+        proc.send_signal(signal.SIGKILL)
+    finally:
+        proc.wait()
+    assert proc.returncode == -signal.SIGKILL, "the run ended before it could be killed"
+    assert not (out / "metrics.json").exists()
+    resumed = run_scenario("deployment", [*ARGS, "--resume", "--out", str(out)])
+    assert _without_memory(resumed) == _without_memory(whole)
+    assert not (out / "resume").exists()
+
+
+def test_resume_with_other_options_is_refused(tmp_path):
+    from hippo.resume import Checkpoints
+
+    Checkpoints(tmp_path / "resume").save({"meta": {"seed": 9}, "run": {}})
+    with pytest.raises(SystemExit, match="other options"):
+        run_scenario("deployment", [*ARGS, "--resume", "--out", str(tmp_path)])
