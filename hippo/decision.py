@@ -59,6 +59,7 @@ class Decider:
         self._approach_t0 = t
         self._waiting_on: Transition | None = None
         self._inhibited: dict[str, int] = {}      # drive -> context state it was inhibited in
+        self._inhibited_at: dict[str, tuple[float, float]] = {}  # ... and where (path int.)
 
     def lifted(self) -> None:
         self._visits.clear()
@@ -88,11 +89,17 @@ class Decider:
 
     def release_away_from(self, place: int) -> None:
         """Drives inhibited by a finished wait are released once the robot reaches a place from
-        which that stop is not one transition away (it has left the checkpoint's region)."""
+        which that stop is not one transition away (it has left the checkpoint's region) and
+        has moved ``release_distance`` cm (path integration) from where the wait ended."""
+        b = self.b
+        x, y = b.pi.pose[:2]
         for d, c in list(self._inhibited.items()):
-            if c != place and not self.stops_at(place, c):
-                self.b.drives.release(d)
+            x0, y0 = self._inhibited_at.get(d, (x, y))
+            if (c != place and not self.stops_at(place, c)
+                    and math.hypot(x - x0, y - y0) >= b.p.release_distance):
+                b.drives.release(d)
                 del self._inhibited[d]
+                self._inhibited_at.pop(d, None)
 
     def on_event(self, new: int, kind: StateKind, prev: int | None) -> None:
         """Decide after the brain entered ``new`` (coming from ``prev``)."""
@@ -287,6 +294,7 @@ class Decider:
                     b.drives.extinguish(name, (a, s))
                 b.drives.inhibit(name)
                 self._inhibited[name] = ctx if ctx is not None else a
+                self._inhibited_at[name] = b.pi.pose[:2]
         self._waiting_on = None
         self.mode = Mode.EXPLORE
         self.choose(ctx if ctx is not None else a, exclude_wait=True)
