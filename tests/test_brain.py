@@ -167,3 +167,65 @@ def test_forgetting_drops_transitions_not_seen_again():
     forgot, ac = walk(0.5)
     assert ac not in forgot.graph           # 0.5**k < 0.05 after k >= 5 other transitions
     assert len(forgot.graph) < len(kept.graph)
+
+
+def _stop_delay(brain: Brain, ctx: str, prev_place: int) -> float | None:
+    a = brain.layer.find("place", "ABC".index(ctx))
+    still = brain.layer.find("still", context=a)
+    t = (prev_place, still)
+    return brain.graph.delay(t) if t in brain.graph else None
+
+
+def test_a_stop_after_a_brief_place_is_timed_from_the_place_just_before():
+    # A held 3 s, B wins 0.4 s (< context_time 1 s), the robot stops: the stop belongs to A
+    brain, run = make()
+    run.ticks(15, "C", moving=True)
+    run.ticks(15, "A", moving=True)
+    run.ticks(3, "B", moving=True)            # B wins (an event) but only for 0.6 s
+    run.ticks(10, "B", moving=False)
+    a, b = brain.layer.find("place", 0), brain.layer.find("place", 1)
+    assert brain.graph.has_state(b)
+    # timed from entering A (3 s in A, 0.6 s in B, less the events' latencies)
+    assert _stop_delay(brain, "A", a) == pytest.approx(3.2, abs=0.3)
+    assert _stop_delay(brain, "A", b) is None
+
+
+def test_a_stop_bound_to_a_place_left_long_ago_is_not_timed_from_that_old_entry():
+    # A, then C and B for a while: a stop bound (top-down) to A while B flickers must not be
+    # timed from the old entry into A, which would put minutes into the map's delay of A's
+    # stop (long deployments: soft stops then came 30-50 cm late)
+    brain, run = make()
+    run.ticks(15, "A", moving=True)
+    run.ticks(30, "C", moving=True)
+    run.ticks(30, "B", moving=True)
+    run.ticks(15, "C", moving=True)
+    run.ticks(3, "B", moving=True)
+    brain.layer.bind_context(brain.layer.find("place", 0))
+    run.ticks(10, "B", moving=False)
+    delay = _stop_delay(brain, "A", brain.layer.find("place", 0))
+    assert delay is None or delay < 3.0
+
+
+def test_a_drive_inhibited_by_a_wait_is_released_only_after_release_distance():
+    def after_extinction(release: float) -> tuple[Brain, Run]:
+        brain, run = make(release_distance=release)
+        for _ in range(3):
+            run.trial(delay=3.0)
+        brain.drives.set_level("sound", 1.0)
+        run.trial(delay=None)                 # the wait ends by non-occurrence: inhibited
+        assert brain.drives.is_inhibited("sound")
+        return brain, run
+
+    brain, run = after_extinction(0.0)
+    run.ticks(15, "B", moving=True)           # a place the stop is not one move from
+    assert not brain.drives.is_inhibited("sound")
+    brain, run = after_extinction(60.0)
+    run.ticks(15, "B", moving=True)           # 25 cm from where the wait ended
+    run.ticks(15, "C", moving=True)           # 40 cm
+    assert brain.drives.is_inhibited("sound")
+    run.ticks(25, "B", moving=True)           # entered at 55 cm: not yet
+    assert brain.drives.is_inhibited("sound")
+    run.ticks(15, "C", moving=True)           # entered at 80 cm: released
+    assert not brain.drives.is_inhibited("sound")
+    with pytest.raises(ValueError, match="release_distance"):
+        BrainParams(release_distance=-1.0)
