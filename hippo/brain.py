@@ -87,6 +87,19 @@ class BrainParams:
         reaches this fraction of the most active place's, as if it had entered ``C`` (0
         disables). Learned place cells split a stretch of track between prototypes that
         alternate from lap to lap; the taught one need not win on every pass.
+    aliases: soft recognition also takes a place that stands in for the stop's place ``C``
+        this time (the robot came from a place after which the map has met ``C`` at least
+        twice, and entered this one instead: :meth:`hippo.decision.Decider.alias_of`) for
+        ``C`` itself, timed from entering it.
+    runup_tolerance, runup_window: odometric anchoring of taught stops. When the teacher's
+        reward follows a stop, the distance the robot ran (path integration) from the end of
+        its previous wait to that stop is the stop's *run-up*. An approach to a stop of that
+        drive then does not end while the robot has run less than the run-up minus
+        ``runup_tolerance`` cm since its last wait, if it is within ``runup_window`` cm of it
+        (farther off, the anchor is not trusted). A wait is a stillness of at least
+        ``runup_min_wait`` s (a stall at a corner is not). Learned place fields shift by some
+        30 cm from lap to lap; the run-up between two checkpoints does not. ``runup_window``
+        0 disables.
     release_distance: a drive that a finished wait inhibited is released (it can choose a stop
         again) only once the robot has also moved this far (cm, path integration) from where
         the wait ended. The place a stop is bound to can stay nearly as active as the winner
@@ -119,6 +132,10 @@ class BrainParams:
     cycle_window: float = 60.0
     cycle_explore: float = 20.0
     coactive: float = 0.6
+    aliases: bool = False
+    runup_tolerance: float = 5.0
+    runup_window: float = 1000.0
+    runup_min_wait: float = 2.0
     release_distance: float = 60.0
     forget: float = 1.0
     states: StateLayerParams = field(default_factory=StateLayerParams)
@@ -141,6 +158,9 @@ class BrainParams:
         check_positive("settle_time", self.settle_time, allow_zero=True)
         check_positive("turn_limit", self.turn_limit)
         check_positive("release_distance", self.release_distance, allow_zero=True)
+        check_positive("runup_tolerance", self.runup_tolerance, allow_zero=True)
+        check_positive("runup_window", self.runup_window, allow_zero=True)
+        check_positive("runup_min_wait", self.runup_min_wait, allow_zero=True)
         for name in ("coactive", "leave_fraction", "stop_lead", "turn_discount", "forget"):
             v = getattr(self, name)
             if not 0.0 <= v <= 1.0:
@@ -217,6 +237,8 @@ class Brain:
         self.drives = Drives(dict(drives if drives is not None else {"sound": DriveParams()}))
         self.planner = Planner(p.planner, seed=seed)
         self.pi = PathIntegrator()
+        self.odometer = 0.0  # distance run (cm, path integration)
+        self.runups: dict[str, float] = {}  # drive -> run-up of its taught stop (cm)
         self.occlusion = occlusion
         self.t = 0.0
         self.decide = Decider(self)
@@ -232,6 +254,8 @@ class Brain:
     cells = property(lambda self: self.timing.cells, doc="the TransitionCells")
     nonocc = property(lambda self: self.timing.nonocc, doc="the NonOccurrence neurons")
     mode = property(lambda self: self.decide.mode, doc="the motor Mode chosen")
+    came_from = property(lambda self: self._ctx_before,
+                         doc="the place (or colour) entered before the current one")
     current = property(lambda self: self.decide.current, doc="the transition executed")
 
     # -- episode bookkeeping ------------------------------------------------------------------
@@ -241,6 +265,8 @@ class Brain:
         # the context states (places, colours) entered last and the one before it
         self._ctx_now: int | None = None
         self._ctx_before: int | None = None
+        self.wait_ended_at: float | None = None   # odometer when the last wait ended
+        self._runup: float | None = None          # run from that to the last stop
         self.entered_at = self.t
         self._entry_pose = self.pi.pose
         self._pending_rewards: list[str] = []
@@ -297,6 +323,7 @@ class Brain:
         ir = check_finite("sensor readings", obs.ir)
         self.t = float(obs.t)
         self.pi.step(obs.odometry)
+        self.odometer += math.hypot(obs.odometry[0], obs.odometry[1])
         if (self.occlusion is not None and self.occlusion.boxed_in(obs)
                 and self._clear_view is not None):
             # occluded: the distance sensors see only what is pressed against the robot. They
@@ -373,6 +400,12 @@ class Brain:
             prev = ctx
             entered_at, entry_pose = self._entries[ctx]
         prev, entered_at = self.decide.intended_source(new, kind, prev, entered_at)
+        if kind == StateKind.STILL:
+            self._runup = None if self.wait_ended_at is None else \
+                self.odometer - self.wait_ended_at
+        elif kind == StateKind.MOVING and prev is not None and \
+                t - entered_at >= self.p.runup_min_wait:
+            self.wait_ended_at = self.odometer  # a wait, not a brief stall
         if prev is not None:
             self._learn(prev, new, t - entered_at, entry_pose)
         if kind.is_context:
@@ -404,6 +437,8 @@ class Brain:
             self.drives.reward("sound", tr)
         for d in self._pending_rewards:
             self.drives.reward(d, tr)
+            if self.kind(prev) == StateKind.STILL and self._runup is not None:
+                self.runups[d] = self._runup  # the taught stop's run-up
         self._pending_rewards.clear()
 
     # -- introspection ------------------------------------------------------------------------

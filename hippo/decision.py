@@ -226,6 +226,7 @@ class Decider:
         if acts.size == 0:
             return
         top = float(acts.max())
+        here = b.state if b.kind(b.state) == StateKind.PLACE else None
         for name in b.drives.names:
             if (b.drives.is_inhibited(name)
                     or b.drives.level(name) < p.planner.exploration_threshold):
@@ -238,15 +239,33 @@ class Decider:
                 kc = b.layer.key(c)
                 if kc.kind != StateKind.PLACE or kc.index >= acts.size:  # type: ignore[operator]
                     continue
-                if (float(acts[kc.index]) < p.coactive * top  # type: ignore[index]
-                        or not b.graph.has_state(c) or (c, a) not in b.graph):
+                if not b.graph.has_state(c) or (c, a) not in b.graph:
+                    continue
+                alias = p.aliases and here is not None and self.alias_of(here, c)
+                if float(acts[kc.index]) < p.coactive * top and not alias:  # type: ignore[index]
                     continue
                 # only if the map would choose that stop on entering C (drives compete)
                 if max(b.graph.outgoing(c), key=self._activity) != (c, a):
                     continue
                 self.current, self.current_since = (c, a), b.t
-                self.mode, self._approach_t0 = Mode.APPROACH, b.t
+                # timed from the recognition, or from entering the alias (as if it were C)
+                self.mode, self._approach_t0 = Mode.APPROACH, b.entered_at if alias else b.t
                 return
+
+    def alias_of(self, place: int, c: int) -> bool:
+        """Does ``place``, just entered, stand in for place ``c`` this time: did the robot come
+        from a place ``p`` after which the map has met ``c`` at least twice (``p -> c``), but
+        this time entered ``place`` instead? Learned place cells often code one stretch of track
+        by one prototype on some laps and by another on others; the sequence context (where
+        the robot came from) tells such a stand-in from a place elsewhere that merely looks
+        alike (the idea of clone-structured cognitive graphs, George et al. 2021, turned round:
+        two observations in one sequence context are one location)."""
+        b = self.b
+        p = b.came_from
+        if place == c or p is None or p in (place, c) or b.state != place:
+            return False
+        g = b.graph
+        return (p, c) in g and (p, place) in g and g.count((p, c)) >= 2
 
     def check_wait(self) -> None:
         """End an approach (stop) or a wait when its time is over (see the module docstring)."""
@@ -271,7 +290,7 @@ class Decider:
                 delay = b.graph.delay(self.current)
                 lead = p.transitions.latency + p.stop_lead * p.dt
                 over = delay is None or b.t - self._approach_t0 >= float(delay) - lead
-            if over or leaving:
+            if (over or leaving) and not self._before_runup():
                 ctx = b.layer.key(self.current[1]).context
                 if ctx is not None:
                     b.layer.bind_context(ctx)  # it stops *for* this place
@@ -298,6 +317,19 @@ class Decider:
         self._waiting_on = None
         self.mode = Mode.EXPLORE
         self.choose(ctx if ctx is not None else a, exclude_wait=True)
+
+    def _before_runup(self) -> bool:
+        """Has the robot, approaching a stop with a taught run-up, run clearly less than it
+        since its last wait (see ``BrainParams.runup_tolerance``)?"""
+        b = self.b
+        k = self.wait_drive()
+        if b.p.runup_window <= 0 or k < 0 or b.wait_ended_at is None:
+            return False
+        runup = b.runups.get(b.drives.names[k])
+        if runup is None:
+            return False
+        ran = b.odometer - b.wait_ended_at
+        return runup - b.p.runup_window < ran < runup - b.p.runup_tolerance
 
     def wait_drive(self) -> int:
         """Index of the drive the robot is waiting or stopping for (-1: none)."""

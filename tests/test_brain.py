@@ -1,6 +1,7 @@
 """The brain on symbolic senses: one neural chain, a typed tick, rewards, extinction, forgetting."""
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -229,3 +230,55 @@ def test_a_drive_inhibited_by_a_wait_is_released_only_after_release_distance():
     assert not brain.drives.is_inhibited("sound")
     with pytest.raises(ValueError, match="release_distance"):
         BrainParams(release_distance=-1.0)
+
+
+def test_a_place_entered_where_another_usually_follows_stands_in_for_it():
+    # C -> A twice, then C -> B: B stands in for A (the robot came from C, after which the map
+    # has met A twice)
+    brain, run = make()
+    for where in "CACAB":
+        run.ticks(15, where, moving=True)
+    run.ticks(15, "C", moving=True)
+    run.ticks(15, "B", moving=True)
+    a, b, c = (brain.layer.find("place", i) for i in range(3))
+    assert brain.state == b and brain.came_from == c
+    assert brain.decide.alias_of(b, a)
+    assert not brain.decide.alias_of(b, b) and not brain.decide.alias_of(a, b)  # not here
+    # after A the map met C once only: B does not stand in for C
+    brain, run = make()
+    for where in "CACAB":
+        run.ticks(15, where, moving=True)
+    a, b, c = (brain.layer.find("place", i) for i in range(3))
+    assert brain.came_from == a and not brain.decide.alias_of(b, c)
+
+
+def test_an_approach_does_not_end_before_the_taught_run_up():
+    def taught(**params) -> tuple[Brain, Run]:
+        brain, run = make(**params)
+        run.ticks(15, "C", moving=True)
+        run.ticks(10, "A", moving=True)
+        run.ticks(25, "A", moving=False)       # a wait: the anchor
+        for where, n in (("A", 5), ("B", 30), ("C", 20), ("A", 10)):
+            run.ticks(n, where, moving=True)   # 65 cm on
+        run.ticks(25, "A", moving=False)       # the taught stop ...
+        brain.reward("sound")                  # ... rewarded as it ends
+        run.ticks(5, "A", moving=True)
+        return brain, run
+
+    brain, run = taught()
+    assert brain.runups["sound"] == pytest.approx(65.0, abs=3.0)
+
+    def early(brain: Brain, run: Run) -> float:
+        """Back round, entering A 25 cm early: the run since the wait when it stops."""
+        brain.drives.set_level("sound", 1.0)
+        run.ticks(30, "B", moving=True)
+        run.ticks(5, "C", moving=True)
+        for _ in range(60):
+            t = run.step("A", moving=True)
+            if t.mode == Mode.WAIT:
+                return brain.odometer - brain.wait_ended_at
+        return math.inf
+
+    assert early(brain, run) == pytest.approx(65.0 - 5.0, abs=2.0)
+    brain, run = taught(runup_window=0.0)      # without the anchor it stops on A's timing
+    assert early(brain, run) < 50.0

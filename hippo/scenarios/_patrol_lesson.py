@@ -1,17 +1,29 @@
 """What the patrol scenarios share: the course's command-line options and the lesson (the
 robot's own exploration, its place cells, one loop on the leash, one reproduced, the waits
-taught by blocks), on the public :mod:`hippo.tasks` API."""
+taught by blocks), on the public :mod:`hippo.tasks` API; ``--save DIR`` writes the taught
+robot, ``--load DIR`` starts from one instead of teaching it again."""
 
 from __future__ import annotations
 
 import argparse
 from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
 
 from hippo.agent import Agent, AgentParams
-from hippo.cli_args import add_place_cells, integer, number, numbers, points
+from hippo.cli_args import (
+    add_place_cells,
+    integer,
+    number,
+    numbers,
+    out_dir,
+    points,
+    snapshot_dir,
+)
 from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.sim import World, arenas
-from hippo.tasks import PLACE_STATES, Log, Session, explore, make_places
+from hippo.snapshot import load_snapshot, save_snapshot
+from hippo.tasks import PLACE_STATES, Log, Session, explore, make_places, stops
 from hippo.tasks.patrol import (
     ARENA_CHECKPOINTS,
     HIREL_WAITS,
@@ -24,8 +36,8 @@ from hippo.tasks.patrol import (
 
 def add_course_arguments(parser: argparse.ArgumentParser) -> None:
     """--arena, --checkpoints, --waits and the place cells' options."""
-    parser.add_argument("--arena", choices=list(ARENA_CHECKPOINTS), default="patrol-course",
-                        help="the world to patrol")
+    parser.add_argument("--arena", choices=list(ARENA_CHECKPOINTS), default=None,
+                        help="the world to patrol (default: patrol-course)")
     parser.add_argument("--checkpoints", type=points((2, 4), "cm"), default=None,
                         help="2 to 4 checkpoints 'x,y;x,y;...' in cm, patrolled in this order "
                              "(default: the arena's own, see ARENA_CHECKPOINTS)")
@@ -39,12 +51,39 @@ def add_course_arguments(parser: argparse.ArgumentParser) -> None:
                         help="ICA units of the place cells")
     parser.add_argument("--places", type=integer(1, 500), default=32,
                         help="place prototypes read out from the ICA units (learned cells)")
+    parser.add_argument("--save", type=out_dir, default=None,
+                        help="write the taught robot (after exploration and the lesson) into "
+                             "this folder as a hippo snapshot")
+    parser.add_argument("--load", type=snapshot_dir, default=None,
+                        help="skip exploration and the lesson: start from a robot written with "
+                             "--save (its seed, arena, checkpoints, waits and place cells come "
+                             "from the snapshot)")
 
 
 def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
     """The checkpoints lie in free space of the arena, are reachable from each other and are
     at least 40 cm apart along the route; one wait per checkpoint (:func:`check_patrol`)."""
-    if not hasattr(args, "arena"):
+    args.loaded = None
+    if getattr(args, "load", None) is not None:
+        if getattr(args, "save", None) is not None:
+            parser.error("argument --save: not allowed with --load (the loaded robot is "
+                         "already saved)")
+        try:
+            args.loaded = load_lesson(args.load)
+        except (OSError, ValueError) as e:
+            parser.error(f"argument --load: {args.load}: {' '.join(str(e).split())}")
+        meta = args.loaded["meta"]
+        for opt, key in (("--arena", "arena"), ("--checkpoints", "checkpoints"),
+                         ("--waits", "waits")):
+            given = getattr(args, key, None)
+            if given is not None and _plain(given) != meta[key]:
+                parser.error(f"argument {opt}: the loaded robot was taught with {key} "
+                             f"{meta[key]}; leave {opt} out with --load")
+        for key in _META:
+            setattr(args, key, meta[key])
+        args.checkpoints = [tuple(c) for c in meta["checkpoints"]]
+        return
+    if getattr(args, "arena", None) is None:
         args.arena = "patrol-course"
     cps = getattr(args, "checkpoints", None)
     cps = ARENA_CHECKPOINTS[args.arena] if cps is None else cps
@@ -67,15 +106,73 @@ class Lesson:
     session: Session
     course: PatrolCourse
     reproduced: float  # the fraction of the loop it reproduced alone after the leash
+    taught_stops: list[float | None]  # per checkpoint, the robot's stillness while blocked
+
+
+#: the options a saved lesson fixes (written into its meta, taken from it by --load)
+_META = ("seed", "arena", "checkpoints", "waits", "place_cells", "explore_min", "units",
+         "places")
+
+
+def _plain(value: Any) -> Any:
+    """Tuples to lists, numbers to floats: the JSON form of an option, to compare."""
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) \
+        else value
+
+
+def load_lesson(folder: str | Path) -> dict:
+    """A snapshot written by ``--save`` of a patrol scenario, checked."""
+    state = load_snapshot(folder, dict)
+    if state.get("scenario") != "patrol-lesson":
+        raise ValueError(f"a snapshot of {state.get('scenario')!r}, not of a patrol lesson")
+    if not isinstance(state.get("agent"), Agent) or not isinstance(state.get("world"), World):
+        raise ValueError("the snapshot holds no agent and world")
+    meta = state.get("meta")
+    if not isinstance(meta, dict) or any(k not in meta for k in (*_META, "reproduced",
+                                                                  "taught_stops")):
+        raise ValueError(f"the snapshot's meta must hold {', '.join(_META)}, reproduced and "
+                         "taught_stops")
+    if meta["arena"] not in ARENA_CHECKPOINTS:
+        raise ValueError(f"unknown arena {meta['arena']!r} in the snapshot")
+    return state
+
+
+def save_lesson(folder: str | Path, lesson: Lesson, args: argparse.Namespace) -> None:
+    """The taught robot, its world (the teacher detached while saving: it is idle), the last
+    observation, the lap counter and what the lesson was."""
+    s = lesson.session
+    meta = {k: _plain(getattr(args, k)) for k in _META}
+    meta.update(seed=int(args.seed), units=int(lesson.agent.places.n_units),
+                reproduced=float(lesson.reproduced), taught_stops=lesson.taught_stops)
+    s.world.detach(s.teacher)
+    try:
+        save_snapshot({"scenario": "patrol-lesson", "meta": meta, "agent": s.agent,
+                       "world": s.world, "obs": s.obs, "loop": lesson.course.loop}, folder)
+    finally:
+        s.world.attach(s.teacher)
 
 
 def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
     """Explore ``args.explore_min`` minutes, fit the place cells, then the lesson
-    (:meth:`PatrolCourse.teach`) with ``args.waits``."""
-    arena = arenas.get(args.arena)
-    world = World(arena, sensors="ir8", seed=seed)
+    (:meth:`PatrolCourse.teach`) with ``args.waits``; or, with ``args.load``, the lesson
+    saved there (``--save`` writes it)."""
     checkpoints = [tuple(map(float, c)) for c in args.checkpoints]
     names = [f"checkpoint-{k}" for k in range(1, len(checkpoints) + 1)]
+    loaded = getattr(args, "loaded", None)
+    if loaded is None and getattr(args, "load", None) is not None:
+        loaded = load_lesson(args.load)
+    if loaded is not None:
+        s = Session(loaded["world"], loaded["agent"], Log(n_drives=len(checkpoints)),
+                    obs=loaded["obs"], phase=PatrolPhase.CHECKPOINTS)
+        course = PatrolCourse(s, patrol_route(args.arena, checkpoints), checkpoints, names)
+        course.loop = loaded["loop"]
+        meta = loaded["meta"]
+        return Lesson(s.world, s.agent, s, course, float(meta["reproduced"]),
+                      list(meta["taught_stops"]))
+    arena = arenas.get(args.arena)
+    world = World(arena, sensors="ir8", seed=seed)
     log = Log(n_drives=len(checkpoints))
     # exploration: place cells only (HIREL learns the map on the leash)
     tour = explore(world, round(args.explore_min * 60 / world.dt), 0.0, seed, log)
@@ -89,4 +186,12 @@ def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
     s = Session(world, agent, log, obs=tour[-1], phase=PatrolPhase.LEASH)
     course = PatrolCourse(s, patrol_route(args.arena, checkpoints), checkpoints, names)
     reproduced = course.teach(list(args.waits))
-    return Lesson(world, agent, s, course, reproduced)
+    taught = stops(s.log.arrays(), checkpoints, world.robot.moving_threshold,
+                   taught_phase=PatrolPhase.CHECKPOINTS)
+    longest = [max((st["duration"] for st in taught if st["checkpoint"] == k
+                    and st["phase"] == PatrolPhase.CHECKPOINTS), default=None)
+               for k in range(len(checkpoints))]
+    lesson = Lesson(world, agent, s, course, reproduced, longest)
+    if getattr(args, "save", None) is not None:
+        save_lesson(args.save, lesson, args)
+    return lesson

@@ -77,7 +77,6 @@ def run(args: argparse.Namespace) -> dict:
     units = min(args.units, 16) if quick else args.units
     arena = arenas.get(args.arena)
     checkpoints = [tuple(map(float, c)) for c in args.checkpoints]
-    n_cp = len(checkpoints)
     t0 = time.perf_counter()
     lesson = teach_patrol(args, seed, units=units)
     world, agent, s, course = lesson.world, lesson.agent, lesson.session, lesson.course
@@ -94,14 +93,13 @@ def run(args: argparse.Namespace) -> dict:
     arrays = s.save(out, Phase)
     all_stops = stops(arrays, checkpoints, world.robot.moving_threshold,
                       taught_phase=Phase.CHECKPOINTS)
-    learned = [_longest_stop(all_stops, k, phase=Phase.CHECKPOINTS) for k in range(n_cp)]
     rows = []
     report = pass_report(arrays, loop_route, checkpoints, all_stops, learned_waits,
                          phase=Phase.PATROL)
     for k, r in enumerate(report):
         rep, err = r.pop("reproduced_waits_s"), r.pop("rel_errors")
         rows.append({"checkpoint": names[k], "taught_block_s": waits[k],
-                     "taught_stop_s": learned[k]["duration"] if learned[k] else None,
+                     "taught_stop_s": lesson.taught_stops[k],
                      "learned_wait_s": learned_waits[k], "reproduced_waits_s": rep, **r,
                      "mean_s": float(np.mean(rep)) if rep else None,
                      "sd_s": float(np.std(rep)) if rep else None,
@@ -117,6 +115,7 @@ def run(args: argparse.Namespace) -> dict:
         "checkpoints_cm": [list(c) for c in checkpoints], "route_cm": loop_route.length,
         "waits_s": waits, "loops": loops,
         "quick": quick, "place_units": places.n_units,
+        "loaded_from": str(args.load) if getattr(args, "load", None) is not None else None,
         "reproduced_loop_fraction": float(reproduced),
         "loops_completed": float(completed),
         "loop_completion": float(min(completed / loops, 1.0)),
@@ -147,10 +146,3 @@ def run(args: argparse.Namespace) -> dict:
         f"{metrics['checkpoint_stops_made']} of {metrics['checkpoint_stops_expected']} "
         f"checkpoint passes; {waits}"))
     return metrics
-
-
-
-def _longest_stop(stops: list[dict], k: int, *, phase: int) -> dict | None:
-    """The longest stop at checkpoint ``k`` during ``phase`` (the taught wait)."""
-    cands = [s for s in stops if s["checkpoint"] == k and s["phase"] == phase]
-    return max(cands, key=lambda s: s["duration"]) if cands else None

@@ -188,7 +188,8 @@ class PatrolCourse:
 
     def teach(self, waits: Sequence[float]) -> float:
         """Settle, one loop on the leash, one loop reproduced alone, then the checkpoints
-        taught by blocks; returns the fraction of the loop reproduced."""
+        taught by blocks (in order, and the first once more); returns the fraction of the
+        loop reproduced."""
         s, agent, dt = self.s, self.agent, self.dt
         # let the place cells settle on the course before the leash
         agent.lifted()
@@ -207,16 +208,27 @@ class PatrolCourse:
                   until=self.lap_until(start_turns + 1.0))
             reproduced = self.loop.turns - start_turns
             bar.update()
-        # checkpoints: block the robot at each for its wait, reward its drive as it ends
+        # checkpoints: block the robot at each for its wait, reward its drive as it ends; the
+        # first one once more at the end, so that every taught stop follows another and the
+        # robot knows its run-up from the wait before (BrainParams.runup_tolerance)
         s.phase = PatrolPhase.CHECKPOINTS
-        with Progress(len(self.checkpoints), "checkpoints") as bar:
-            for k, c in enumerate(self.checkpoints):
+        order = [*range(len(self.checkpoints)), 0]
+        with Progress(len(order), "checkpoints") as bar:
+            for i, k in enumerate(order):
+                c = self.checkpoints[k]
                 s.trial = k
+                again = i == len(self.checkpoints)
+                if again:  # the drive taught first would stop the robot on its own: not yet
+                    for n in self.names:
+                        agent.drives.inhibit(n)
                 s.run(int(300 / dt), until=lambda o, c=c: self.near(c, 12.0))
                 s.block(waits[k])
                 agent.reward(self.names[k])
                 s.run(int(10 / dt),
                       until=lambda o: self.state_kind() not in (None, StateKind.STILL))
+                if again:
+                    for n in self.names:
+                        agent.drives.release(n)
                 bar.update()
         return reproduced
 

