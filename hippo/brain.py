@@ -96,10 +96,11 @@ class BrainParams:
         its previous wait to that stop is the stop's *run-up*. An approach to a stop of that
         drive then does not end while the robot has run less than the run-up minus
         ``runup_tolerance`` cm since its last wait, if it is within ``runup_window`` cm of it
-        (farther off, the anchor is not trusted). A wait is a stillness of at least
-        ``runup_min_wait`` s (a stall at a corner is not). Learned place fields shift by some
-        30 cm from lap to lap; the run-up between two checkpoints does not. ``runup_window``
-        0 disables.
+        (farther off, the anchor is not trusted). The waits that anchor are the rewarded ones
+        (:meth:`Brain.reward`, e.g. the teacher's blocks) and the robot's own waits for a
+        drive; stalls and unlinked stops are not. Learned place fields shift by some 30 cm
+        from lap to lap; the run-up between two checkpoints does not. ``runup_window`` 0
+        disables.
     release_distance: a drive that a finished wait inhibited is released (it can choose a stop
         again) only once the robot has also moved this far (cm, path integration) from where
         the wait ended. The place a stop is bound to can stay nearly as active as the winner
@@ -135,7 +136,6 @@ class BrainParams:
     aliases: bool = False
     runup_tolerance: float = 5.0
     runup_window: float = 1000.0
-    runup_min_wait: float = 2.0
     release_distance: float = 60.0
     forget: float = 1.0
     states: StateLayerParams = field(default_factory=StateLayerParams)
@@ -160,7 +160,6 @@ class BrainParams:
         check_positive("release_distance", self.release_distance, allow_zero=True)
         check_positive("runup_tolerance", self.runup_tolerance, allow_zero=True)
         check_positive("runup_window", self.runup_window, allow_zero=True)
-        check_positive("runup_min_wait", self.runup_min_wait, allow_zero=True)
         for name in ("coactive", "leave_fraction", "stop_lead", "turn_discount", "forget"):
             v = getattr(self, name)
             if not 0.0 <= v <= 1.0:
@@ -266,7 +265,6 @@ class Brain:
         self._ctx_now: int | None = None
         self._ctx_before: int | None = None
         self.wait_ended_at: float | None = None   # odometer when the last wait ended
-        self._runup: float | None = None          # run from that to the last stop
         self.entered_at = self.t
         self._entry_pose = self.pi.pose
         self._pending_rewards: list[str] = []
@@ -298,6 +296,11 @@ class Brain:
         if drive not in self.drives:
             raise KeyError(f"unknown drive {drive!r}; known: {', '.join(self.drives.names)}")
         self._pending_rewards.append(drive)
+        # the stop just rewarded is a taught one: its run-up from the last wait, and the
+        # anchor of the next
+        if self.wait_ended_at is not None:
+            self.runups[drive] = self.odometer - self.wait_ended_at
+        self.wait_ended_at = self.odometer
 
     def kind(self, state: int) -> StateKind:
         """What ``state`` stands for."""
@@ -400,12 +403,6 @@ class Brain:
             prev = ctx
             entered_at, entry_pose = self._entries[ctx]
         prev, entered_at = self.decide.intended_source(new, kind, prev, entered_at)
-        if kind == StateKind.STILL:
-            self._runup = None if self.wait_ended_at is None else \
-                self.odometer - self.wait_ended_at
-        elif kind == StateKind.MOVING and prev is not None and \
-                t - entered_at >= self.p.runup_min_wait:
-            self.wait_ended_at = self.odometer  # a wait, not a brief stall
         if prev is not None:
             self._learn(prev, new, t - entered_at, entry_pose)
         if kind.is_context:
@@ -437,8 +434,6 @@ class Brain:
             self.drives.reward("sound", tr)
         for d in self._pending_rewards:
             self.drives.reward(d, tr)
-            if self.kind(prev) == StateKind.STILL and self._runup is not None:
-                self.runups[d] = self._runup  # the taught stop's run-up
         self._pending_rewards.clear()
 
     # -- introspection ------------------------------------------------------------------------

@@ -307,6 +307,8 @@ class Decider:
         # predicted reward that did not come also weakens the drive's link to the wait (HIREL
         # eq. 4's decay term, Drives.extinguish: no change with the default extinction 0)
         ctx = b.layer.key(a).context if b.kind(a) == StateKind.STILL else a
+        if any((a, s) in b.drives.links(name) for name in b.drives.names):
+            b.wait_ended_at = b.odometer  # a wait for a drive: the next run-up starts here
         for name in b.drives.names:
             if (a, s) in b.drives.links(name) and name not in self._inhibited:
                 if not own:

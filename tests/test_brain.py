@@ -255,14 +255,17 @@ def test_a_place_entered_where_another_usually_follows_stands_in_for_it():
 def test_an_approach_does_not_end_before_the_taught_run_up():
     def taught(**params) -> tuple[Brain, Run]:
         brain, run = make(**params)
+        brain.drives.inhibit("sound")          # the teacher chooses the stops, not the drive
         run.ticks(15, "C", moving=True)
         run.ticks(10, "A", moving=True)
-        run.ticks(25, "A", moving=False)       # a wait: the anchor
+        run.ticks(25, "A", moving=False)       # a rewarded wait: the anchor
+        brain.reward("sound")
         for where, n in (("A", 5), ("B", 30), ("C", 20), ("A", 10)):
             run.ticks(n, where, moving=True)   # 65 cm on
         run.ticks(25, "A", moving=False)       # the taught stop ...
         brain.reward("sound")                  # ... rewarded as it ends
         run.ticks(5, "A", moving=True)
+        brain.drives.release("sound")
         return brain, run
 
     brain, run = taught()
@@ -279,6 +282,7 @@ def test_an_approach_does_not_end_before_the_taught_run_up():
                 return brain.odometer - brain.wait_ended_at
         return math.inf
 
-    assert early(brain, run) == pytest.approx(65.0 - 5.0, abs=2.0)
+    gated = early(brain, run)
+    assert gated == pytest.approx(65.0 - 5.0, abs=2.0)
     brain, run = taught(runup_window=0.0)      # without the anchor it stops on A's timing
-    assert early(brain, run) < 50.0
+    assert early(brain, run) <= gated - 8.0

@@ -211,25 +211,23 @@ class PatrolCourse:
         # checkpoints: block the robot at each for its wait, reward its drive as it ends; the
         # first one once more at the end, so that every taught stop follows another and the
         # robot knows its run-up from the wait before (BrainParams.runup_tolerance)
+        # (the drives are held meanwhile: the teacher, not the robot, chooses the stops)
         s.phase = PatrolPhase.CHECKPOINTS
         order = [*range(len(self.checkpoints)), 0]
+        for n in self.names:
+            agent.drives.inhibit(n)
         with Progress(len(order), "checkpoints") as bar:
-            for i, k in enumerate(order):
+            for k in order:
                 c = self.checkpoints[k]
                 s.trial = k
-                again = i == len(self.checkpoints)
-                if again:  # the drive taught first would stop the robot on its own: not yet
-                    for n in self.names:
-                        agent.drives.inhibit(n)
                 s.run(int(300 / dt), until=lambda o, c=c: self.near(c, 12.0))
                 s.block(waits[k])
                 agent.reward(self.names[k])
                 s.run(int(10 / dt),
                       until=lambda o: self.state_kind() not in (None, StateKind.STILL))
-                if again:
-                    for n in self.names:
-                        agent.drives.release(n)
                 bar.update()
+        for n in self.names:
+            agent.drives.release(n)
         return reproduced
 
     def patrol(self, loops: int) -> float:
