@@ -96,9 +96,10 @@ class BrainParams:
         its previous wait to that stop is the stop's *run-up*. An approach to a stop of that
         drive then does not end while the robot has run less than the run-up minus
         ``runup_tolerance`` cm since its last wait, if it is within ``runup_window`` cm of it
-        (farther off, the anchor is not trusted). The waits that anchor are the rewarded ones
-        (:meth:`Brain.reward`, e.g. the teacher's blocks) and the robot's own waits for a
-        drive; stalls and unlinked stops are not. Learned place fields shift by some 30 cm
+        (farther off, the anchor is not trusted). The run-up is measured from the reward
+        before (:meth:`Brain.reward`, e.g. the teacher's blocks); the waits that anchor an
+        approach are the rewarded ones and the robot's own waits for a drive (stalls and
+        unlinked stops are not). Learned place fields shift by some 30 cm
         from lap to lap; the run-up between two checkpoints does not. ``runup_window`` 0
         disables.
     release_distance: a drive that a finished wait inhibited is released (it can choose a stop
@@ -135,7 +136,7 @@ class BrainParams:
     coactive: float = 0.6
     aliases: bool = False
     runup_tolerance: float = 5.0
-    runup_window: float = 1000.0
+    runup_window: float = 100.0
     release_distance: float = 60.0
     forget: float = 1.0
     states: StateLayerParams = field(default_factory=StateLayerParams)
@@ -265,6 +266,7 @@ class Brain:
         self._ctx_now: int | None = None
         self._ctx_before: int | None = None
         self.wait_ended_at: float | None = None   # odometer when the last wait ended
+        self._rewarded_at: float | None = None    # ... at the last reward
         self.entered_at = self.t
         self._entry_pose = self.pi.pose
         self._pending_rewards: list[str] = []
@@ -296,11 +298,11 @@ class Brain:
         if drive not in self.drives:
             raise KeyError(f"unknown drive {drive!r}; known: {', '.join(self.drives.names)}")
         self._pending_rewards.append(drive)
-        # the stop just rewarded is a taught one: its run-up from the last wait, and the
-        # anchor of the next
-        if self.wait_ended_at is not None:
-            self.runups[drive] = self.odometer - self.wait_ended_at
-        self.wait_ended_at = self.odometer
+        # the stop just rewarded is a taught one: its run-up is the run since the reward
+        # before (the robot's own stops in between do not count), and it anchors the next
+        if self._rewarded_at is not None:
+            self.runups[drive] = self.odometer - self._rewarded_at
+        self._rewarded_at = self.wait_ended_at = self.odometer
 
     def kind(self, state: int) -> StateKind:
         """What ``state`` stands for."""

@@ -211,23 +211,22 @@ class PatrolCourse:
         # checkpoints: block the robot at each for its wait, reward its drive as it ends; the
         # first one once more at the end, so that every taught stop follows another and the
         # robot knows its run-up from the wait before (BrainParams.runup_tolerance)
-        # (the drives are held meanwhile: the teacher, not the robot, chooses the stops)
+        # (the drive of the checkpoint ahead is held meanwhile: the teacher, not the robot,
+        # chooses that stop; the others lead the robot on along the loop)
         s.phase = PatrolPhase.CHECKPOINTS
         order = [*range(len(self.checkpoints)), 0]
-        for n in self.names:
-            agent.drives.inhibit(n)
         with Progress(len(order), "checkpoints") as bar:
             for k in order:
                 c = self.checkpoints[k]
                 s.trial = k
+                agent.drives.inhibit(self.names[k])
                 s.run(int(300 / dt), until=lambda o, c=c: self.near(c, 12.0))
                 s.block(waits[k])
                 agent.reward(self.names[k])
                 s.run(int(10 / dt),
                       until=lambda o: self.state_kind() not in (None, StateKind.STILL))
+                agent.drives.release(self.names[k])
                 bar.update()
-        for n in self.names:
-            agent.drives.release(n)
         return reproduced
 
     def patrol(self, loops: int) -> float:
