@@ -1,0 +1,135 @@
+"""The parameters of the neural loop and its decisions (:class:`BrainParams`).
+
+Every per-tick constant of :class:`hippo.brain.Brain` and :mod:`hippo.decision` is a named,
+documented field here; :mod:`hippo.brain` re-exports the class.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from hippo._checks import check_fields, check_positive
+from hippo.cognitive_map import PlannerParams
+from hippo.cognitive_map.localise import LocaliserParams
+from hippo.perception.states import StateLayerParams
+from hippo.timing import NonOccurrenceParams, SpectralParams, TransitionParams
+
+__all__ = ["BrainParams"]
+
+
+@dataclass(frozen=True)
+class BrainParams:
+    """Parameters of the neural loop and its decisions (dt: the e-puck of SMC09).
+
+    still_turn: rad/s of rotation under which a robot that does not translate counts as still
+        (turning on the spot is movement for proprioception).
+    proprio_ticks: proprioception is debounced: the robot becomes still (or moving) after this
+        many consecutive ticks of it, so a stall at a corner is not a stop.
+    settle_time: after being lifted the robot explores this long (s) before it trusts its
+        place state again (learned place cells need a few seconds to recover; SMC09 Fig. 7).
+    relocalise: after being lifted, explore until the map recognises the place changes the
+        robot sees (:class:`~hippo.cognitive_map.localise.MapLocaliser`) instead of for
+        ``settle_time``; None (default): ``settle_time``. It avoids decisions on a stale
+        place but can explore longer: see :mod:`hippo.cognitive_map.localise` for numbers.
+    move_timeout, move_margin, default_delay: a move is abandoned (the robot explores) after
+        ``move_timeout`` × its learned delay + ``move_margin`` s; a move the map has no delay
+        for counts as ``default_delay`` s.
+    approach: keep moving after entering a place until the learned ``C -> still@C`` delay is
+        over before stopping (False: stop as soon as the stop is chosen).
+    leave_fraction: an approaching robot stops anyway once a move out of its place is this far
+        (elapsed fraction of its learned delay) through: it would usually have left by then.
+    stop_lead: a stop timed by the map's delay (not by the transition cells) comes this
+        fraction of a tick early, besides the transition cells' latency (rounding to a tick).
+    turn_limit, turn_discount: a move whose heading differs from the robot's by more than
+        ``turn_limit`` rad (about 100°: it would turn a moving robot around) has its drive
+        activity multiplied by ``turn_discount`` when transitions compete (motor continuity
+        against aliasing).
+    cycle_visits, cycle_window, cycle_explore: habituation. Entering the same place
+        ``cycle_visits`` times within ``cycle_window`` s while a drive is active means the map
+        is leading the robot in circles (noisy place states can make transitions point back
+        and forth); it then explores for ``cycle_explore`` s.
+    coactive: soft recognition of a wanted stop's place: while moving with an active drive
+        whose stop is bound to place ``C``, the robot approaches that stop once ``C``'s activity
+        reaches this fraction of the most active place's, as if it had entered ``C`` (0
+        disables). Learned place cells split a stretch of track between prototypes that
+        alternate from lap to lap; the taught one need not win on every pass.
+    aliases: soft recognition also takes a place that stands in for the stop's place ``C``
+        this time (the robot came from a place after which the map has met ``C`` at least
+        twice, and entered this one instead: :meth:`hippo.decision.Decider.alias_of`) for
+        ``C`` itself, timed from entering it. Off by default: in 3-h deployments on tuning
+        seeds 0, 1 and 4 (before the run-up anchors) it added failures (212, 47, 87 against
+        187, 23, 76 without it); it helped only seed 3, whose taught place won on few laps.
+    runup_tolerance, runup_window: odometric anchoring of taught stops. When the teacher's
+        reward follows a stop, the distance the robot ran (path integration) from the end of
+        its previous wait to that stop is the stop's *run-up*. An approach to a stop of that
+        drive then does not end while the robot has run less than the run-up minus
+        ``runup_tolerance`` cm since its last wait, if it is within ``runup_window`` cm of it
+        (farther off, the anchor is not trusted). The run-up is measured from the reward
+        before (:meth:`Brain.reward`, e.g. the teacher's blocks); the waits that anchor an
+        approach are the rewarded ones and the robot's own waits for a drive (stalls and
+        unlinked stops are not). Learned place fields shift by some 30 cm
+        from lap to lap; the run-up between two checkpoints does not. ``runup_window`` 0
+        disables.
+    release_distance: a drive that a finished wait inhibited is released (it can choose a stop
+        again) only once the robot has also moved this far (cm, path integration) from where
+        the wait ended. The place a stop is bound to can stay nearly as active as the winner
+        for a few dozen cm after it; in long patrols on learned place cells the robot then
+        stopped a second time for the same checkpoint 30-45 cm past it (tuning seed 1, 2 h:
+        about half of the misplaced stops). 0 disables.
+    forget: at every transition learned, each transition's strength is multiplied by this and
+        transitions below 0.05 are forgotten (``TransitionGraph.decay``; re-observing one resets
+        its strength to 1); the drives' links to forgotten transitions go with them. 1 (the
+        default): the map never forgets, as in HIREL's experiments.
+
+    Extinction of goal links (HIREL eq. 4's decay term) is a drive's parameter
+    (``DriveParams.extinction``, default 0): see :meth:`hippo.decision.Decider.check_wait`.
+    """
+
+    dt: float = 0.2
+    still_turn: float = 0.15
+    proprio_ticks: int = 2
+    settle_time: float = 6.0
+    relocalise: LocaliserParams | None = None
+    move_timeout: float = 3.0
+    move_margin: float = 5.0
+    default_delay: float = 5.0
+    approach: bool = True
+    leave_fraction: float = 0.8
+    stop_lead: float = 0.5
+    turn_limit: float = 1.75
+    turn_discount: float = 0.5
+    cycle_visits: int = 3
+    cycle_window: float = 60.0
+    cycle_explore: float = 20.0
+    coactive: float = 0.6
+    aliases: bool = False
+    runup_tolerance: float = 5.0
+    runup_window: float = 100.0
+    release_distance: float = 60.0
+    forget: float = 1.0
+    states: StateLayerParams = field(default_factory=StateLayerParams)
+    spectral: SpectralParams = field(default_factory=SpectralParams)
+    #: latency 0.4 s = one tick from decision to motion + one tick of proprioceptive debounce
+    #: (``proprio_ticks - 1``): the robot's own end of a wait is then seen at the learned delay
+    transitions: TransitionParams = field(default_factory=lambda: TransitionParams(latency=0.4))
+    non_occurrence: NonOccurrenceParams = field(default_factory=NonOccurrenceParams)
+    planner: PlannerParams = field(default_factory=lambda: PlannerParams(w=0.9, noise=0.01))
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+        check_positive("dt", self.dt)
+        check_positive("still_turn", self.still_turn, allow_zero=True)
+        check_positive("move_timeout", self.move_timeout)
+        check_positive("move_margin", self.move_margin, allow_zero=True)
+        check_positive("default_delay", self.default_delay)
+        if self.proprio_ticks < 1:
+            raise ValueError(f"proprio_ticks must be >= 1, got {self.proprio_ticks}")
+        check_positive("settle_time", self.settle_time, allow_zero=True)
+        check_positive("turn_limit", self.turn_limit)
+        check_positive("release_distance", self.release_distance, allow_zero=True)
+        check_positive("runup_tolerance", self.runup_tolerance, allow_zero=True)
+        check_positive("runup_window", self.runup_window, allow_zero=True)
+        for name in ("coactive", "leave_fraction", "stop_lead", "turn_discount", "forget"):
+            v = getattr(self, name)
+            if not 0.0 <= v <= 1.0:
+                raise ValueError(f"{name} must lie in [0, 1], got {v}")
