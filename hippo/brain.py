@@ -123,6 +123,8 @@ class Brain:
         self.pi = PathIntegrator()
         self.odometer = 0.0  # distance run (cm, path integration)
         self.runups: dict[str, float] = {}  # drive -> run-up of its taught stop (cm)
+        self.runup_after: dict[str, str] = {}  # drive -> the drive rewarded before it
+        self.runup_early: dict[str, float] = {}  # drive -> a stop made well short of its run-up
         self.occlusion = occlusion
         self.t = 0.0
         self.decide = Decider(self)
@@ -151,6 +153,8 @@ class Brain:
         self._ctx_before: int | None = None
         self.wait_ended_at: float | None = None   # odometer when the last wait ended
         self._rewarded_at: float | None = None    # ... at the last reward
+        self._rewarded_drive: str | None = None   # the drive of the last reward
+        self.last_wait_drive: str | None = None   # the drive the last wait (or reward) was for
         self.entered_at = self.t
         self._entry_pose = self.pi.pose
         self._pending_rewards: list[str] = []
@@ -184,9 +188,16 @@ class Brain:
         self._pending_rewards.append(drive)
         # the stop just rewarded is a taught one: its run-up is the run since the reward
         # before (the robot's own stops in between do not count), and it anchors the next
-        if self._rewarded_at is not None:
-            self.runups[drive] = self.odometer - self._rewarded_at
+        # (a reward far from the run-up already taught, e.g. the teacher's block at a
+        # checkpoint after hours of patrol, does not replace it)
+        runup = None if self._rewarded_at is None else self.odometer - self._rewarded_at
+        taught = self.runups.get(drive)
+        if (runup is not None and self._rewarded_drive is not None
+                and (taught is None or abs(runup - taught) <= self.p.runup_window)):
+            self.runups[drive] = runup
+            self.runup_after[drive] = self._rewarded_drive
         self._rewarded_at = self.wait_ended_at = self.odometer
+        self._rewarded_drive = self.last_wait_drive = drive
 
     def kind(self, state: int) -> StateKind:
         """What ``state`` stands for."""

@@ -32,12 +32,13 @@ from typing import Any
 
 import numpy as np
 
+from hippo.runups import RunupRules
 from hippo.types import Mode, StateKind, Transition, wrap_angle
 
 __all__ = ["Decider"]
 
 
-class Decider:
+class Decider(RunupRules):
     """The decision rules of one brain (see the module docstring).
 
     ``brain``: the :class:`~hippo.brain.Brain` it decides for (this module does not import
@@ -60,6 +61,9 @@ class Decider:
         self._waiting_on: Transition | None = None
         self._inhibited: dict[str, int] = {}      # drive -> context state it was inhibited in
         self._inhibited_at: dict[str, tuple[float, float]] = {}  # ... and where (path int.)
+        self._stopped_at: float | None = None   # odometer where the current stop began
+        self._runup_fired = False               # the current approach is by run-up alone
+        self._stop_by_runup = False             # ... and so is the current stop
 
     def lifted(self) -> None:
         self._visits.clear()
@@ -153,6 +157,7 @@ class Decider:
         keep_heading = self.mode in (Mode.MOVE, Mode.APPROACH) and self.heading is not None
         lost = Mode.MOVE if keep_heading else Mode.EXPLORE
         self.current = None
+        self._runup_fired = False
         if s is None or not g.has_state(s):
             self.mode = lost
             self.current_since = b.t
@@ -220,7 +225,7 @@ class Decider:
         beats those of the moves out of ``C``)."""
         b = self.b
         p = b.p
-        if p.coactive <= 0 or self.mode != Mode.MOVE or b.state is None:
+        if self.mode != Mode.MOVE or b.state is None or self._runup_due() or p.coactive <= 0:
             return
         acts = b.layer.place_activity
         if acts.size == 0:
@@ -290,11 +295,12 @@ class Decider:
                 delay = b.graph.delay(self.current)
                 lead = p.transitions.latency + p.stop_lead * p.dt
                 over = delay is None or b.t - self._approach_t0 >= float(delay) - lead
-            if (over or leaving) and not self._before_runup():
+            if (over or leaving or self._past_runup()) and not self._before_runup():
                 ctx = b.layer.key(self.current[1]).context
                 if ctx is not None:
                     b.layer.bind_context(ctx)  # it stops *for* this place
                 self.mode, self._waiting_on = Mode.WAIT, self.current
+                self._stopped_at, self._stop_by_runup = b.odometer, self._runup_fired
             return
         if self.mode != Mode.WAIT or self._waiting_on is None:
             return
@@ -307,8 +313,11 @@ class Decider:
         # predicted reward that did not come also weakens the drive's link to the wait (HIREL
         # eq. 4's decay term, Drives.extinguish: no change with the default extinction 0)
         ctx = b.layer.key(a).context if b.kind(a) == StateKind.STILL else a
-        if any((a, s) in b.drives.links(name) for name in b.drives.names):
-            b.wait_ended_at = b.odometer  # a wait for a drive: the next run-up starts here
+        served = [name for name in b.drives.names if (a, s) in b.drives.links(name)]
+        if served:
+            self._correct_runup(served[0])
+        if served and self._anchors(served[0]):  # the next run-up starts here
+            b.wait_ended_at, b.last_wait_drive = b.odometer, served[0]
         for name in b.drives.names:
             if (a, s) in b.drives.links(name) and name not in self._inhibited:
                 if not own:
@@ -319,19 +328,6 @@ class Decider:
         self._waiting_on = None
         self.mode = Mode.EXPLORE
         self.choose(ctx if ctx is not None else a, exclude_wait=True)
-
-    def _before_runup(self) -> bool:
-        """Has the robot, approaching a stop with a taught run-up, run clearly less than it
-        since its last wait (see ``BrainParams.runup_tolerance``)?"""
-        b = self.b
-        k = self.wait_drive()
-        if b.p.runup_window <= 0 or k < 0 or b.wait_ended_at is None:
-            return False
-        runup = b.runups.get(b.drives.names[k])
-        if runup is None:
-            return False
-        ran = b.odometer - b.wait_ended_at
-        return runup - b.p.runup_window < ran < runup - b.p.runup_tolerance
 
     def wait_drive(self) -> int:
         """Index of the drive the robot is waiting or stopping for (-1: none)."""

@@ -252,22 +252,53 @@ def test_a_place_entered_where_another_usually_follows_stands_in_for_it():
     assert brain.came_from == a and not brain.decide.alias_of(b, c)
 
 
-def test_an_approach_does_not_end_before_the_taught_run_up():
-    def taught(**params) -> tuple[Brain, Run]:
-        brain, run = make(**params)
-        brain.drives.inhibit("sound")          # the teacher chooses the stops, not the drive
-        run.ticks(15, "C", moving=True)
-        run.ticks(10, "A", moving=True)
-        run.ticks(25, "A", moving=False)       # a rewarded wait: the anchor
-        brain.reward("sound")
-        for where, n in (("A", 5), ("B", 30), ("C", 20), ("A", 10)):
-            run.ticks(n, where, moving=True)   # 65 cm on
-        run.ticks(25, "A", moving=False)       # the taught stop ...
-        brain.reward("sound")                  # ... rewarded as it ends
-        run.ticks(5, "A", moving=True)
-        brain.drives.release("sound")
-        return brain, run
+def taught(**params) -> tuple[Brain, Run]:
+    """A stop at A taught 65 cm after a rewarded wait (the anchor), rewarded as it ends."""
+    brain, run = make(**params)
+    brain.drives.inhibit("sound")          # the teacher chooses the stops, not the drive
+    run.ticks(15, "C", moving=True)
+    run.ticks(10, "A", moving=True)
+    run.ticks(25, "A", moving=False)       # a rewarded wait: the anchor
+    brain.reward("sound")
+    for where, n in (("A", 5), ("B", 30), ("C", 20), ("A", 10)):
+        run.ticks(n, where, moving=True)   # 65 cm on
+    run.ticks(25, "A", moving=False)       # the taught stop ...
+    brain.reward("sound")                  # ... rewarded as it ends
+    run.ticks(5, "A", moving=True)
+    brain.drives.release("sound")
+    return brain, run
 
+
+def test_a_taught_stop_is_made_by_its_run_up_where_its_place_does_not_win():
+    # after the taught stop, on through B only: neither A (the stop's place) nor C (the place
+    # before it) wins or comes close. With runup_stop the robot stops for the drive where the
+    # run-up says, bound to A; without it, it runs on
+    def ran_at_stop(**params) -> float:
+        brain, run = taught(**params)
+        assert brain.runup_after["sound"] == "sound" and brain.last_wait_drive == "sound"
+        run.ticks(20, "B", moving=True)        # away from A, the drive low after its reward
+        assert brain.mode == Mode.MOVE or brain.mode == Mode.EXPLORE
+        brain.drives.set_level("sound", 1.0)
+        for _ in range(120):
+            t = run.step("B", moving=True)
+            if t.mode == Mode.WAIT:
+                ctx = brain.layer.key(t.transition[1]).context
+                assert ctx == brain.layer.find("place", 0)   # a stop at A's place
+                return brain.odometer - brain.wait_ended_at
+        return math.inf
+
+    assert ran_at_stop(runup_stop=0.0) == pytest.approx(65.0, abs=2.0)
+    assert ran_at_stop(runup_stop=10.0) == pytest.approx(75.0, abs=2.0)
+    assert ran_at_stop(runup_stop=-1.0) == math.inf
+    # beyond runup_window of the run-up the anchor is not trusted
+    assert ran_at_stop(runup_stop=0.0, runup_window=0.0) == math.inf
+    # the map has A -> B (moving on from A's stop) and B -> C -> A: A is one transition
+    # from B, so within runup_hops 1 but not 0 (the robot is in B, not in A)
+    assert ran_at_stop(runup_stop=0.0, runup_hops=1) == pytest.approx(65.0, abs=2.0)
+    assert ran_at_stop(runup_stop=0.0, runup_hops=0) == math.inf
+
+
+def test_an_approach_does_not_end_before_the_taught_run_up():
     brain, run = taught()
     assert brain.runups["sound"] == pytest.approx(65.0, abs=3.0)
 
@@ -286,3 +317,24 @@ def test_an_approach_does_not_end_before_the_taught_run_up():
     assert gated == pytest.approx(65.0 - 5.0, abs=2.0)
     brain, run = taught(runup_window=0.0)      # without the anchor it stops on A's timing
     assert early(brain, run) <= gated - 8.0
+
+
+def test_only_a_wait_where_the_anchor_said_anchors_the_next_run_up():
+    # two checkpoints a -> b -> a: b's run-up 50 cm after a's wait, a's 100 cm after b's
+    brain = Brain(Stub(), drives={"a": DriveParams(), "b": DriveParams()},
+                  params=BrainParams(runup_window=100.0))
+    anchors = brain.decide._anchors
+    assert anchors("a")                        # no anchor yet: any wait anchors
+    brain.runups, brain.runup_after = {"b": 50.0, "a": 100.0}, {"b": "a", "a": "b"}
+    brain.wait_ended_at, brain.last_wait_drive = 0.0, "a"
+    brain.odometer = 60.0
+    assert anchors("b")                        # b, after a, near its run-up
+    brain.odometer = 40.0
+    assert not anchors("a")                    # a again just after a: out of the taught order
+    brain.odometer = 170.0
+    assert not anchors("b")                    # b, but 120 cm off its run-up
+    brain.odometer = 201.0
+    assert anchors("a") and anchors("b")       # the anchor is stale (100 + 100 cm)
+    brain.runups = {"a": 100.0}
+    brain.odometer = 40.0
+    assert anchors("b")                        # no run-up taught for b: nothing to check

@@ -86,8 +86,7 @@ def run(args: argparse.Namespace) -> dict:
         lesson = teach_patrol(args, int(args.seed), units=units)
         s, course = lesson.session, lesson.course
         s.world.detach(s.teacher)  # the teacher stays away from now on
-        for d in course.names:
-            s.agent.drives.set_level(d, 1.0)
+        course.drives_up()
         course.laps()
         state = {"learned": course.learned_waits(), "reproduced": lesson.reproduced,
                  "t_start": s.t, "segments": [], "health0": health(s.agent, 0.0)}

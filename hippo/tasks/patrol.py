@@ -229,11 +229,18 @@ class PatrolCourse:
                 bar.update()
         return reproduced
 
-    def patrol(self, loops: int) -> float:
-        """Every drive up, ``loops`` laps alone; returns the laps completed."""
-        s = self.s
-        for d in self.names:
+    def drives_up(self) -> None:
+        """Every drive up to 1, but that of the checkpoint the lesson served last (the first
+        one: the robot has just left it), which keeps its level: at 1 it made the robot stop
+        there once more a few dozen cm on."""
+        for d in self.names[1:]:
             self.agent.drives.set_level(d, 1.0)
+
+    def patrol(self, loops: int) -> float:
+        """Every drive up (:meth:`drives_up`), ``loops`` laps alone; returns the laps
+        completed."""
+        s = self.s
+        self.drives_up()
         s.phase, start_turns = PatrolPhase.PATROL, self.laps()
         # the first lap ends at the quiet point after a whole loop (or a little more)
         end = self.laps_to_quiet(1)

@@ -1,0 +1,176 @@
+"""Odometric anchoring of taught stops: run-ups (the :class:`~hippo.decision.Decider`'s rules).
+
+When the teacher's reward follows a stop, the distance the robot ran (path integration) from
+the reward before is that stop's *run-up* (:meth:`hippo.brain.Brain.reward`). Learned place
+fields drift by some 30 cm from lap to lap; the run between two checkpoints does not. The rules
+here use it (parameters in :class:`~hippo.brain_params.BrainParams`):
+
+- the gate (``runup_tolerance``, ``runup_window``): an approach does not end before the run-up;
+- the odometric stop (``runup_stop``, ``runup_hops``; off by default): a taught stop is made
+  by its run-up where its place neither wins nor is recognised softly;
+- anchoring: only a wait where the anchor said moves it, and a run-up that two stops by place
+  in a row show to be too long (a detour in the lesson) is replaced.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from hippo.types import Mode, StateKind
+
+__all__ = ["RunupRules"]
+
+
+class RunupRules:
+    """Run-up rules of a :class:`~hippo.decision.Decider` (mixed into it; reads its brain
+    ``self.b``, its mode, current transition and approach start)."""
+
+    b: Any
+    mode: Mode
+    current: Any
+    current_since: float
+    _approach_t0: float
+    _stopped_at: float | None
+    _stop_by_runup: bool
+    _runup_fired: bool
+
+    def wait_drive(self) -> int:  # provided by the Decider
+        raise NotImplementedError
+
+    def _correct_runup(self, name: str) -> None:
+        """A taught run-up is an upper bound: a detour during the lesson makes it too long,
+        never too short. Two stops for drive ``name`` in a row that the robot made by place
+        (not by run-up), each after the drive taught before it and more than ``runup_window``
+        cm short of the taught run-up, and within ``runup_window`` / 2 of each other, replace
+        it by their mean."""
+        b = self.b
+        runup = b.runups.get(name)
+        if (runup is None or self._stopped_at is None or self._stop_by_runup
+                or b.wait_ended_at is None or b.runup_after.get(name) != b.last_wait_drive):
+            return
+        seen = self._stopped_at - b.wait_ended_at
+        if seen >= runup - b.p.runup_window:
+            b.runup_early.pop(name, None)
+            return
+        before = b.runup_early.get(name)
+        if before is not None and abs(before - seen) <= b.p.runup_window / 2:
+            b.runups[name] = (before + seen) / 2
+            b.runup_early.pop(name)
+        else:
+            b.runup_early[name] = seen
+
+    def _anchors(self, name: str) -> bool:
+        """Does the robot's own wait for drive ``name``, just over, anchor the next run-up? Yes
+        if no anchor holds, if ``name`` has no taught run-up, if the wait came where the anchor
+        said (after the drive taught before it, within ``runup_window`` of its run-up), or if
+        the anchor is stale (the robot ran the longest run-up and ``runup_window`` more since
+        it). A stop that the anchor did not predict (a stop made again just after a wait, or
+        for a drive out of the taught order) would shift every run-up after it."""
+        b = self.b
+        runup = b.runups.get(name)
+        if b.wait_ended_at is None or b.last_wait_drive is None or runup is None:
+            return True
+        ran = b.odometer - b.wait_ended_at
+        if b.runup_after.get(name) == b.last_wait_drive and abs(ran - runup) <= b.p.runup_window:
+            return True
+        return ran > max(b.runups.values()) + b.p.runup_window
+
+    def _runup_due(self) -> bool:
+        """Odometric recognition of a taught stop (``BrainParams.runup_stop``): the robot's last
+        wait was for the drive taught right before drive ``D``, ``D`` is active, and the robot
+        has run ``D``'s run-up and ``runup_stop`` cm more without stopping for it (its place
+        neither won nor was recognised softly, or an approach by place ran on): it stops for
+        ``D`` now, whichever place wins. With the gate of :meth:`_before_runup` a stop then
+        comes within [run-up - ``runup_tolerance``, run-up + ``runup_stop``] of the last wait;
+        farther off (beyond ``runup_window``) neither rule applies."""
+        b = self.b
+        p = b.p
+        if p.runup_stop < 0 or b.wait_ended_at is None or b.last_wait_drive is None:
+            return False
+        ran = b.odometer - b.wait_ended_at
+        for name in b.drives.names:
+            runup = b.runups.get(name)
+            if (runup is None or b.runup_after.get(name) != b.last_wait_drive
+                    or not runup + p.runup_stop <= ran < runup + p.runup_window
+                    or b.drives.is_inhibited(name)
+                    or b.drives.level(name) < p.planner.exploration_threshold):
+                continue
+            for a, _ in b.drives.links(name):
+                c = b.layer.key(a).context
+                if (b.kind(a) != StateKind.STILL or c is None or not b.graph.has_state(c)
+                        or (c, a) not in b.graph):
+                    continue
+                if self.mode != Mode.MOVE or not self._near_in_map(c, p.runup_hops):
+                    return False
+                # an approach that is over at once (:meth:`_past_runup`), timed as if C had
+                # been entered the learned time-to-stop ago (the map's delay of C -> still@C
+                # stays what it was)
+                delay = b.graph.delay((c, a))
+                self.current, self.current_since = (c, a), b.t
+                self.mode = Mode.APPROACH
+                self._approach_t0 = b.t - float(delay or 0.0)
+                self._runup_fired = True
+                return True
+        return False
+
+    def _near_in_map(self, c: int, hops: int) -> bool:
+        """Is place ``c`` at most ``hops`` transitions from the place the robot is in (either
+        way; a stop and the move on from it count as the place itself)?"""
+        b = self.b
+        here = b._ctx_now
+        if here is None:
+            return False
+        layer = b.layer
+
+        def ctx(s: int) -> int:
+            k = layer.key(s)
+            stop = k.kind in (StateKind.STILL, StateKind.MOVING)
+            return k.context if stop and k.context is not None else s
+
+        g = b.graph
+        adj: dict[int, set[int]] = g.cached("context-adjacency",
+                                            lambda: _context_adjacency(g, ctx))
+        seen, front = {ctx(here)}, {ctx(here)}
+        for _ in range(hops):
+            front = {n for f in front for n in adj.get(f, ())} - seen
+            seen |= front
+        return c in seen
+
+    def _past_runup(self) -> bool:
+        """Has the robot, approaching a stop with a taught run-up from its last wait, run
+        that run-up and ``runup_stop`` cm more (see :meth:`_runup_due`)?"""
+        b = self.b
+        k = self.wait_drive()
+        if b.p.runup_stop < 0 or k < 0 or b.wait_ended_at is None:
+            return False
+        name = b.drives.names[k]
+        runup = b.runups.get(name)
+        if runup is None or b.runup_after.get(name) != b.last_wait_drive:
+            return False
+        ran = b.odometer - b.wait_ended_at
+        return runup + b.p.runup_stop <= ran < runup + b.p.runup_window
+
+    def _before_runup(self) -> bool:
+        """Has the robot, approaching a stop with a taught run-up, run clearly less than it
+        since its last wait (see ``BrainParams.runup_tolerance``)?"""
+        b = self.b
+        k = self.wait_drive()
+        if b.p.runup_window <= 0 or k < 0 or b.wait_ended_at is None:
+            return False
+        runup = b.runups.get(b.drives.names[k])
+        if runup is None:
+            return False
+        ran = b.odometer - b.wait_ended_at
+        return runup - b.p.runup_window < ran < runup - b.p.runup_tolerance
+
+
+def _context_adjacency(g: Any, ctx: Any) -> dict[int, set[int]]:
+    """Undirected adjacency of the map's context states (a stop ``still@C`` and ``moving@C``
+    stand for ``C``)."""
+    adj: dict[int, set[int]] = {}
+    for a, b in g.transitions:
+        u, v = ctx(a), ctx(b)
+        if u != v:
+            adj.setdefault(u, set()).add(v)
+            adj.setdefault(v, set()).add(u)
+    return adj
