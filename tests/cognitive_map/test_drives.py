@@ -130,3 +130,31 @@ def test_save_and_load(tmp_path):
     e = Drives.load(d.save(tmp_path / "drives.json"))
     assert e.levels == d.levels and e.links("b") == d.links("b")
     assert e.params("a") == d.params("a") and e.is_inhibited("a")
+
+
+def test_a_link_that_falls_exactly_to_min_weight_is_kept():
+    # "links weaker than min_weight are dropped": 0.5 -> 0.25 = min_weight stays (exact floats)
+    d = Drives({"s": DriveParams(learning_rate=0.5, extinction=0.5, min_weight=0.25)})
+    d.link("s", (1, 2))
+    assert d.extinguish("s", (1, 2)) == 0.25 and d.links("s") == {(1, 2): 0.25}
+    assert d.extinguish("s", (1, 2)) == 0.0 and d.links("s") == {}
+
+
+def test_unlink_and_prune_each_count_one_change_and_prune_counts_its_drops():
+    d = Drives(["a", "b"])
+    for t in [(1, 2), (2, 3), (3, 4)]:
+        d.link("a", t)
+    d.link("b", (2, 3))
+    v = d.links_version
+    d.unlink("a", (1, 2))
+    assert d.links_version == v + 1  # one change, as for link (the planner re-propagates)
+    assert d.prune([(3, 4)]) == 2  # a's and b's links to (2, 3)
+    assert d.links_version == v + 2
+    assert d.links("a") == {(3, 4): 0.5} and d.links("b") == {}
+    assert d.prune([(3, 4)]) == 0 and d.links_version == v + 2  # nothing dropped, no change
+
+
+def test_drives_is_a_container_of_its_names():
+    d = Drives(["sound", "colour"])
+    assert "sound" in d and "food" not in d
+    assert list(d) == ["sound", "colour"] == d.names and len(d) == 2
