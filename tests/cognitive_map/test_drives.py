@@ -158,3 +158,28 @@ def test_drives_is_a_container_of_its_names():
     d = Drives(["sound", "colour"])
     assert "sound" in d and "food" not in d
     assert list(d) == ["sound", "colour"] == d.names and len(d) == 2
+
+
+def test_a_partial_reward_scales_the_link_step():
+    # W += alpha * reward * (1 - W): alpha 0.5, reward 0.5 -> 0.25
+    d = Drives({"s": DriveParams(learning_rate=0.5)})
+    d.set_level("s", 0.8)
+    d.reward("s", (1, 2), reward=0.5)
+    assert d.links("s") == {(1, 2): 0.25} and d.level("s") == 0.0
+
+
+def test_from_dict_names_what_is_wrong():
+    good = Drives(["s"]).to_dict()
+    with pytest.raises(ValueError, match=r"format 'nope'"):
+        Drives.from_dict({**good, "format": "nope"})
+    with pytest.raises(ValueError, match=r"format 'list'"):
+        Drives.from_dict([good])
+    with pytest.raises(ValueError, match=r"'drives' must be a list, got dict"):
+        Drives.from_dict({**good, "drives": {}})
+    item = good["drives"][0]
+    with pytest.raises(ValueError, match=r"links of drive 's' must be a list"):
+        Drives.from_dict({**good, "drives": [{**item, "links": {}}]})
+    with pytest.raises(ValueError, match=r"link weight must lie in \[0.0, 1.0\]"):
+        Drives.from_dict({**good, "drives": [{**item, "links": [[1, 2, 1.5]]}]})
+    back = Drives.from_dict({**good, "drives": [{**item, "links": [[1, 2, 1.0]]}]})
+    assert back.links("s") == {(1, 2): 1.0}

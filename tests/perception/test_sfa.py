@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from hippo.perception.sfa import SFA, SFAMoments, SFAParams, quadratic_expansion
+from hippo.perception.sfa import SFA, SFAMoments, SFAParams, chunk_bounds, quadratic_expansion
 
 
 def _mixture(T=4000, seed=0, extra_cols=0):
@@ -171,3 +171,34 @@ def test_auto_cutoff_ties_go_to_the_largest_candidate():
     sfa = SFA(n_components=2, cutoff="auto").fit(X)
     assert len(set(sfa.cutoff_scores_.values())) == 1 and len(sfa.cutoff_scores_) == 10
     assert sfa.cutoff_ == 1e-3
+
+
+def test_quadratic_sfa_finds_the_slow_square_far_from_zero():
+    # the input is centred before the products are taken: with an offset of 1e4 (sd ~1) the
+    # products of uncentred inputs would bury x^2 under (1e4)^2 (relative eigenvalue ~1e-10,
+    # below the whitening cutoff)
+    rng = np.random.default_rng(1)
+    t = np.arange(5000)
+    slow = np.sin(2 * np.pi * t / 1500)
+    X = np.column_stack([slow * rng.choice([-1.0, 1.0], size=5000), rng.standard_normal(5000)])
+    quad = SFA(n_components=1, expansion="quadratic").fit_transform(X + 1e4)[:, 0]
+    assert abs(np.corrcoef(quad, slow ** 2)[0, 1]) > 0.99
+
+
+def test_quadratic_expansion_of_one_row_equals_its_row_in_a_batch():
+    Z = np.random.default_rng(0).standard_normal((5, 3))
+    np.testing.assert_array_equal(quadratic_expansion(Z[2]), quadratic_expansion(Z)[2])
+    assert quadratic_expansion(np.array([2.0, 3.0])).tolist() == [2, 3, 4, 6, 9]
+
+
+def test_chunks_hold_rows_rows_and_the_split_is_a_boundary():
+    assert chunk_bounds(10, 3, rows=4) == [0, 4, 8, 10]
+    assert chunk_bounds(10, 3, rows=4, split=5) == [0, 4, 5, 8, 10]
+    assert chunk_bounds(1000, 10) == [0, 1000]  # ~2 million values per chunk by default
+
+
+def test_three_samples_are_enough_two_are_not():
+    X = np.array([[0.0, 1.0], [1.0, 0.0], [0.0, 0.5]])
+    assert SFA(n_components=1).fit(X).transform(X).shape == (3, 1)
+    with pytest.raises(ValueError, match="at least 3 samples"):
+        SFA(n_components=1).fit(X[:2])
