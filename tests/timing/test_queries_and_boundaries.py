@@ -137,3 +137,14 @@ def test_run_trial_names_a_bad_delay():
 
     with pytest.raises(ValueError, match="delay"):
         run_trial(TimingChain(), 0, 1, -1.0, dt=DT, jitter=0.0)
+
+
+def test_a_chain_wires_its_parts_with_the_given_params():
+    from hippo.timing import NonOccurrenceParams, SpectralParams, TransitionParams
+    from hippo.timing.chain import TimingChain
+
+    chain = TimingChain(SpectralParams(n_cells=16), TransitionParams(min_strength=0.5),
+                        NonOccurrenceParams(min_peak=0.3))
+    assert chain.step(0, DT).battery.activity.shape == (16,)
+    assert chain.cells.timing is chain.spectral
+    assert chain.cells.params.min_strength == 0.5 and chain.nonocc.params.min_peak == 0.3

@@ -109,3 +109,13 @@ def test_bad_input_is_named(timing):
 def test_readout_of_any_scaled_battery_is_its_time(tau, gain):
     timing = SpectralTiming()
     assert timing.readout(gain * timing.tuning(tau)) == pytest.approx(tau, rel=2e-3)
+
+
+def test_readout_names_a_bad_pattern():
+    timing = SpectralTiming()
+    bad = timing.tuning(3.0).copy()
+    bad[5] = np.nan
+    with pytest.raises(ValueError, match=r"^pattern\b"):
+        timing.readout(bad)
+    with pytest.raises(ValueError, match=r"pattern must have shape \(128,\)"):
+        timing.readout(np.ones(5))

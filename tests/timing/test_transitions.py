@@ -180,3 +180,14 @@ def test_settled_ticks_skip_learning_with_the_same_numbers():
     for key in a.transitions:
         np.testing.assert_array_equal(a.weights(key), b.weights(key))
     assert ra == rb
+
+
+def test_reproduce_reports_the_closed_loop_waits_the_stored_delay_and_the_lag():
+    # HIREL Table I in miniature: 3 teacher trials at 7 s, then 5 waits the system ends itself
+    # (each within ~1.5 ticks of 7 s), the stored delay within 2 %, and the non-occurrence
+    # neuron firing after the omitted event's time, within a fifth of the delay (Weber)
+    r = reproduce(7.0, seed=0)
+    assert r.delay == 7.0 and len(r.waits) == 5
+    assert all(abs(w - 7.0) < 0.3 for w in r.waits), r.waits
+    assert abs(r.learned - 7.0) < 0.14
+    assert 0.0 < r.non_occurrence_lag < 0.2 * 7.0

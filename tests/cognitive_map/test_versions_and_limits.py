@@ -1,0 +1,46 @@
+"""Edges of the map's contract found by mutation testing: what ``version`` counts, where decay
+draws its line, a plan's length limit, and names in errors."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from hippo.cognitive_map import DriveParams, Drives, Planner, TransitionGraph
+from hippo.cognitive_map.synthetic import transitions_from_state_edges
+
+
+def test_version_grows_on_every_new_state():
+    g = TransitionGraph()
+    versions = [g.version]
+    for s in (1, 2, 3):
+        g.add_state(s)
+        versions.append(g.version)
+    assert versions == sorted(set(versions))  # strictly growing
+    g.add_state(2)  # already known: nothing changed
+    assert g.version == versions[-1]
+
+
+def test_decay_keeps_a_strength_exactly_at_the_threshold():
+    # "drop those below threshold": 1 -> 0.5 -> 0.25 = threshold stays, 0.125 goes
+    g = transitions_from_state_edges([(1, 2)], both_ways=False)
+    assert g.decay(0.5, threshold=0.25) == []
+    assert g.decay(0.5, threshold=0.25) == [] and g.transitions == [(1, 2)]
+    assert g.decay(0.5, threshold=0.25) == [(1, 2)] and g.transitions == []
+
+
+def test_mark_used_names_a_bad_time():
+    g = transitions_from_state_edges([(1, 2)], both_ways=False)
+    with pytest.raises(ValueError, match=r"^time\b"):
+        g.mark_used((1, 2), time=math.nan)
+
+
+def test_a_plan_stops_after_max_steps():
+    g = transitions_from_state_edges((i, i + 1) for i in range(8))
+    d = Drives({"goal": DriveParams(learning_rate=1.0)})
+    d.link("goal", (7, 8))
+    d.set_level("goal", 1.0)
+    full = Planner().plan(g, d, 0)
+    assert full == [(i, i + 1) for i in range(8)]
+    assert Planner().plan(g, d, 0, max_steps=3) == full[:3]
