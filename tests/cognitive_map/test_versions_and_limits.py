@@ -44,3 +44,19 @@ def test_a_plan_stops_after_max_steps():
     full = Planner().plan(g, d, 0)
     assert full == [(i, i + 1) for i in range(8)]
     assert Planner().plan(g, d, 0, max_steps=3) == full[:3]
+
+
+def test_a_move_heading_is_kept_in_minus_pi_to_pi():
+    from hippo.cognitive_map import Action
+
+    assert Action.move(-math.pi, 5.0).heading == math.pi  # the (-pi, pi] convention
+    assert Action.move(math.pi, 5.0).heading == math.pi
+    assert Action.move(-3.0, 5.0).heading == -3.0
+    assert Action.move(0.0, 0.0).distance == 0.0  # a zero-length move is allowed
+    with pytest.raises(ValueError, match=r"^distance\b"):
+        Action.move(0.0, -1.0)
+    with pytest.raises(ValueError, match=r"^heading\b"):
+        Action("move", math.nan, 1.0)
+    for heading, distance in ((1.0, None), (None, 1.0)):
+        with pytest.raises(ValueError, match="needs both a heading"):
+            Action("move", heading, distance)

@@ -148,3 +148,11 @@ def test_a_chain_wires_its_parts_with_the_given_params():
     assert chain.step(0, DT).battery.activity.shape == (16,)
     assert chain.cells.timing is chain.spectral
     assert chain.cells.params.min_strength == 0.5 and chain.nonocc.params.min_peak == 0.3
+
+
+def test_a_chain_of_parts_that_do_not_fit_is_refused():
+    from hippo.timing import TransitionCells
+    from hippo.timing.chain import TimingChain
+
+    with pytest.raises(ValueError, match=r"cells must read the batteries of spectral"):
+        TimingChain.of(SpectralTiming(), TransitionCells(SpectralTiming()))
