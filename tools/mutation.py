@@ -49,7 +49,8 @@ DEFAULT_TESTS: dict[str, list[str]] = {
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
-COMMON_TESTS = ["tests/test_bad_inputs.py", "tests/test_loaders_fuzz.py"]
+COMMON_TESTS = ["tests/test_bad_inputs.py", "tests/test_loaders_fuzz.py",
+                "tests/test_param_ranges.py"]
 
 # Surviving mutants that cannot change behaviour (or that this machine cannot test), each
 # checked by hand: (module, regex on the removed line (or "name:" and a regex on the mutant's
