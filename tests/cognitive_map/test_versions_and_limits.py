@@ -60,3 +60,23 @@ def test_a_move_heading_is_kept_in_minus_pi_to_pi():
     for heading, distance in ((1.0, None), (None, 1.0)):
         with pytest.raises(ValueError, match="needs both a heading"):
             Action("move", heading, distance)
+
+
+def test_same_as_sees_an_attribute_that_differs():
+    g, h = (transitions_from_state_edges([(1, 2), (2, 3)]) for _ in range(2))
+    assert g.same_as(h)
+    h.add_transition(1, 2, (0.0, 1.0), delay=3.0)  # one more sample, with a delay
+    assert set(g.transitions) == set(h.transitions) and not g.same_as(h)
+
+
+def test_the_index_arrays_spell_out_its_transitions():
+    g = transitions_from_state_edges([(1, 2), (2, 5)])
+    idx = g.index()
+    assert [(int(a), int(b)) for a, b in zip(idx.a, idx.b)] == list(idx.nodes)
+    assert all(idx.pos[t] == i for i, t in enumerate(idx.nodes))
+
+
+def test_add_transition_names_a_bad_time():
+    g = TransitionGraph()
+    with pytest.raises(ValueError, match=r"^time\b"):
+        g.add_transition(1, 2, (0.0, 1.0), time=math.inf)
