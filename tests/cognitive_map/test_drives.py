@@ -183,3 +183,13 @@ def test_from_dict_names_what_is_wrong():
         Drives.from_dict({**good, "drives": [{**item, "links": [[1, 2, 1.5]]}]})
     back = Drives.from_dict({**good, "drives": [{**item, "links": [[1, 2, 1.0]]}]})
     assert back.links("s") == {(1, 2): 1.0}
+
+
+def test_a_zero_step_changes_nothing_and_a_bad_dt_is_named():
+    d = Drives({"s": DriveParams(epsilon=0.5, initial=0.3)})
+    d.step(0.0)
+    assert d.level("s") == 0.3
+    with pytest.raises(ValueError, match=r"^dt\b"):
+        d.step(-0.1)
+    with pytest.raises(ValueError, match=r"epsilon\*dt = 1.5 > 1 .*use a smaller dt$"):
+        d.step(3.0)

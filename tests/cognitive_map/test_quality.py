@@ -62,7 +62,7 @@ def test_a_next_symbol_seen_only_in_the_test_sequence_is_in_the_marginal():
 
 
 def test_a_bad_prior_or_coverage_or_length_is_named():
-    with pytest.raises(ValueError, match="prior"):
+    with pytest.raises(ValueError, match=r"^prior\b"):
         next_state_bits([1], [1], [1], [1], prior=0.0)
     with pytest.raises(ValueError, match="next_state_bits needs"):
         next_state_bits([1], [1], [], [])

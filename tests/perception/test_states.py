@@ -193,6 +193,10 @@ def test_leaving_the_coloured_floor_hands_over_to_the_most_active_place():
     assert layer.key(colour) == ("colour", 2, None)
     ev = layer.step(weak, colour=0, moving=True, dt=0.2)
     assert ev.changed and layer.key(ev.winner).kind == "place"
+    # the most active one: place 2 when it is the strongest
+    layer.step(np.array([0.0, 0.01, 0.05]), colour=3, moving=True, dt=0.2)
+    ev = layer.step(np.array([0.0, 0.01, 0.05]), colour=0, moving=True, dt=0.2)
+    assert layer.key(ev.winner) == ("place", 2, None)
 
 
 def _drive_to(layer, acts, ticks, moving=True):
