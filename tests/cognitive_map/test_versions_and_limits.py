@@ -58,7 +58,7 @@ def test_a_move_heading_is_kept_in_minus_pi_to_pi():
     with pytest.raises(ValueError, match=r"^heading\b"):
         Action("move", math.nan, 1.0)
     for heading, distance in ((1.0, None), (None, 1.0)):
-        with pytest.raises(ValueError, match="^a move action needs both a heading"):
+        with pytest.raises(ValueError, match=r"^a move action needs both a heading"):
             Action("move", heading, distance)
 
 

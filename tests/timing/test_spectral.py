@@ -119,3 +119,8 @@ def test_readout_names_a_bad_pattern():
         timing.readout(bad)
     with pytest.raises(ValueError, match=r"pattern must have shape \(128,\)"):
         timing.readout(np.ones(5))
+
+
+def test_tuning_names_a_bad_time():
+    with pytest.raises(ValueError, match=r"^tau\b"):
+        SpectralTiming().tuning(math.nan)
