@@ -124,3 +124,12 @@ def test_readout_names_a_bad_pattern():
 def test_tuning_names_a_bad_time():
     with pytest.raises(ValueError, match=r"^tau\b"):
         SpectralTiming().tuning(math.nan)
+
+
+def test_reset_starts_the_clock_again_at_zero():
+    timing = SpectralTiming()
+    assert timing.tau == 0.0
+    for _ in range(5):
+        timing.step(0, 0.2)
+    timing.reset()
+    assert timing.tau == 0.0 and timing.state is None

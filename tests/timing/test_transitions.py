@@ -233,3 +233,14 @@ def test_a_negative_transition_source_is_named():
     _, cells, _, _ = learned(3.0, pairings=1)
     with pytest.raises(ValueError, match=r"^transition source\b"):
         cells.learned_delay((-1, 1))
+
+
+def test_a_delay_beyond_the_battery_says_how_to_time_it():
+    from hippo.timing import DelayRangeWarning, SpectralParams
+
+    timing = SpectralTiming(SpectralParams(mu_max=10.0))
+    cells = TransitionCells(timing)
+    for _ in range(80):  # 16 s in state 0, beyond mu_max = 10 s
+        cells.step(timing.step(0, DT), DT)
+    with pytest.warns(DelayRangeWarning, match=r"raise SpectralParams.mu_max to time it$"):
+        cells.step(timing.step(1, DT), DT)
