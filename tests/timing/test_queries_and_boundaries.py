@@ -154,7 +154,7 @@ def test_a_chain_of_parts_that_do_not_fit_is_refused():
     from hippo.timing import TransitionCells
     from hippo.timing.chain import TimingChain
 
-    with pytest.raises(ValueError, match=r"cells must read the batteries of spectral"):
+    with pytest.raises(ValueError, match=r"^cells must read the batteries of spectral"):
         TimingChain.of(SpectralTiming(), TransitionCells(SpectralTiming()))
 
 
@@ -174,7 +174,7 @@ def test_run_trial_stays_after_s_in_b_and_takes_the_modules_one_by_one():
     cells = TransitionCells(timing)
     run_trial(timing, cells, 0, 1, 3.0, jitter=0.0)
     assert cells.learned_delay((0, 1)) == chain.cells.learned_delay((0, 1))
-    with pytest.raises(ValueError, match="nonocc goes with run_trial"):
+    with pytest.raises(ValueError, match=r"^nonocc goes with run_trial"):
         run_trial(TimingChain(), 0, 1, 3.0, jitter=0.0, nonocc=NonOccurrence())
     with pytest.raises(TypeError, match=r"takes a, b and delay"):
         run_trial(TimingChain(), 0, 1, jitter=0.0)
