@@ -130,3 +130,66 @@ def test_save_and_load(tmp_path):
     e = Drives.load(d.save(tmp_path / "drives.json"))
     assert e.levels == d.levels and e.links("b") == d.links("b")
     assert e.params("a") == d.params("a") and e.is_inhibited("a")
+
+
+def test_a_link_that_falls_exactly_to_min_weight_is_kept():
+    # "links weaker than min_weight are dropped": 0.5 -> 0.25 = min_weight stays (exact floats)
+    d = Drives({"s": DriveParams(learning_rate=0.5, extinction=0.5, min_weight=0.25)})
+    d.link("s", (1, 2))
+    assert d.extinguish("s", (1, 2)) == 0.25 and d.links("s") == {(1, 2): 0.25}
+    assert d.extinguish("s", (1, 2)) == 0.0 and d.links("s") == {}
+
+
+def test_unlink_and_prune_each_count_one_change_and_prune_counts_its_drops():
+    d = Drives(["a", "b"])
+    for t in [(1, 2), (2, 3), (3, 4)]:
+        d.link("a", t)
+    d.link("b", (2, 3))
+    v = d.links_version
+    d.unlink("a", (1, 2))
+    assert d.links_version == v + 1  # one change, as for link (the planner re-propagates)
+    assert d.prune([(3, 4)]) == 2  # a's and b's links to (2, 3)
+    assert d.links_version == v + 2
+    assert d.links("a") == {(3, 4): 0.5} and d.links("b") == {}
+    assert d.prune([(3, 4)]) == 0 and d.links_version == v + 2  # nothing dropped, no change
+
+
+def test_drives_is_a_container_of_its_names():
+    d = Drives(["sound", "colour"])
+    assert "sound" in d and "food" not in d
+    assert list(d) == ["sound", "colour"] == d.names and len(d) == 2
+
+
+def test_a_partial_reward_scales_the_link_step():
+    # W += alpha * reward * (1 - W): alpha 0.5, reward 0.5 -> 0.25
+    d = Drives({"s": DriveParams(learning_rate=0.5)})
+    d.set_level("s", 0.8)
+    d.reward("s", (1, 2), reward=0.5)
+    assert d.links("s") == {(1, 2): 0.25} and d.level("s") == 0.0
+
+
+def test_from_dict_names_what_is_wrong():
+    good = Drives(["s"]).to_dict()
+    with pytest.raises(ValueError, match=r"format 'nope'"):
+        Drives.from_dict({**good, "format": "nope"})
+    with pytest.raises(ValueError, match=r"format 'list'"):
+        Drives.from_dict([good])
+    with pytest.raises(ValueError, match=r"'drives' must be a list, got dict"):
+        Drives.from_dict({**good, "drives": {}})
+    item = good["drives"][0]
+    with pytest.raises(ValueError, match=r"links of drive 's' must be a list"):
+        Drives.from_dict({**good, "drives": [{**item, "links": {}}]})
+    with pytest.raises(ValueError, match=r"link weight must lie in \[0.0, 1.0\]"):
+        Drives.from_dict({**good, "drives": [{**item, "links": [[1, 2, 1.5]]}]})
+    back = Drives.from_dict({**good, "drives": [{**item, "links": [[1, 2, 1.0]]}]})
+    assert back.links("s") == {(1, 2): 1.0}
+
+
+def test_a_zero_step_changes_nothing_and_a_bad_dt_is_named():
+    d = Drives({"s": DriveParams(epsilon=0.5, initial=0.3)})
+    d.step(0.0)
+    assert d.level("s") == 0.3
+    with pytest.raises(ValueError, match=r"^dt\b"):
+        d.step(-0.1)
+    with pytest.raises(ValueError, match=r"epsilon\*dt = 1.5 > 1 .*use a smaller dt$"):
+        d.step(3.0)

@@ -204,3 +204,4 @@ def test_graphml_bad_files(tmp_path):
     (tmp_path / "g3.graphml").write_text("\n".join(lines[:edge] + lines[edge + 1:]))
     with pytest.raises(CorruptFileError, match="links differ"):
         TransitionGraph.from_graphml(tmp_path / "g3.graphml")
+

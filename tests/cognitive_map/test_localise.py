@@ -73,3 +73,74 @@ def test_bad_input_is_named():
         loc.observe(1, math.nan, corridor())
     with pytest.raises(ValueError, match="finite time"):
         loc.observe(1, 1.0, corridor())
+
+
+def test_the_weber_bound_itself_is_inside():
+    # |ln(6 / 4)| = ln(1 + 0.5) exactly: a stay of 1.5 x the learned delay still matches
+    g = corridor()
+    loc = MapLocaliser(LocaliserParams(n_known=2, delay_tolerance=0.5))
+    loc.reset(0.0)
+    loc.observe(1, 1.0, g)
+    loc.observe(2, 2.0, g)
+    assert loc.observe(3, 8.0, g)
+
+
+def test_a_short_learned_delay_is_timed_too():
+    # a learned 0.5 s: a 2 s stay (x4) does not match it (the run restarts), a 0.6 s one does
+    g = TransitionGraph()
+    for a in (1, 2, 3, 4):
+        g.add_transition(a, a + 1, Action.move(0.0, 20.0), delay=0.5)
+    loc = MapLocaliser(LocaliserParams(n_known=2))
+    loc.reset(0.0)
+    loc.observe(1, 1.0, g)
+    loc.observe(2, 2.0, g)
+    assert not loc.observe(3, 4.0, g)
+    assert not loc.observe(4, 4.5, g)
+    assert loc.observe(5, 5.1, g)
+
+
+def test_changes_without_a_measurable_timing_are_not_timed():
+    # a transition with no learned delay (None) or a zero one, or a stay of zero seconds:
+    # known is enough (a log-ratio of the times would be undefined)
+    g = TransitionGraph()
+    g.add_transition(1, 2, Action.move(0.0, 20.0))             # no delay
+    g.add_transition(2, 3, Action.move(0.0, 20.0))
+    g.add_transition(3, 4, Action.move(0.0, 20.0), delay=0.0)  # a zero delay
+    g.add_transition(4, 5, Action.move(0.0, 20.0), delay=4.0)
+    loc = MapLocaliser(LocaliserParams(n_known=4))
+    loc.reset(0.0)
+    loc.observe(1, 1.0, g)
+    assert not loc.observe(2, 2.0, g)
+    assert not loc.observe(3, 9.0, g)     # 7 s against no delay: fine
+    assert not loc.observe(4, 10.0, g)    # 1 s against a zero delay: fine
+    assert loc.observe(5, 10.0, g)        # 0 s in 4 against 4 s: not timed
+    assert loc.time_to_localise == 10.0
+
+
+def test_the_same_winner_again_neither_breaks_nor_extends_a_run():
+    # a repeated winner (at the same instant, allowed) is not a change: the run of known
+    # changes goes on, and the stay is timed from the repeat
+    g = corridor()
+    loc = MapLocaliser(LocaliserParams(n_known=2))
+    loc.reset(0.0)
+    loc.observe(1, 1.0, g)
+    assert not loc.observe(2, 2.0, g)
+    assert not loc.observe(2, 2.0, g)
+    assert loc.events == 3 and loc.time_to_localise is None
+    assert loc.observe(3, 6.0, g)
+
+
+def test_once_localised_it_stays_localised_until_the_next_lift():
+    g = corridor()
+    loc = MapLocaliser()  # a new localiser counts from t = 0
+    assert loc.localised_at is None and loc.time_to_localise is None
+    assert not loc.check(59.0) and loc.check(60.0)
+    assert loc.observe(3, 61.0, g) and loc.observe(1, 62.0, g)  # even an unknown change
+    assert loc.time_to_localise == 60.0
+    loc.reset(100.0)
+    assert not loc.localised and loc.time_to_localise is None
+
+
+def test_params_of_the_wrong_type_are_named():
+    with pytest.raises(TypeError, match="params must be LocaliserParams"):
+        MapLocaliser({"n_known": 2})

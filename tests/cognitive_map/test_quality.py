@@ -50,3 +50,25 @@ def test_bad_lengths_are_named():
         next_state_bits([1, 2], [1], [1], [1])
     with pytest.raises(ValueError, match="at least one"):
         next_state_bits([], [], [1], [1])
+
+
+def test_a_next_symbol_seen_only_in_the_test_sequence_is_in_the_marginal():
+    # K counts the symbols of training AND test: train a->x, a->y; test a->z (never trained).
+    # K = 3, N = 2: m(z) = 0.5 / (2 + 1.5) = 1/7; P(z | a) = (0 + 1/7) / (2 + 1) = 1/21
+    bits = next_state_bits(["a", "a"], ["x", "y"], ["a"], ["z"])
+    assert bits == pytest.approx(math.log2(21))
+    # a weaker prior trusts the counts more: the unseen z costs more bits
+    assert next_state_bits(["a", "a"], ["x", "y"], ["a"], ["z"], prior=0.5) > bits
+
+
+def test_a_bad_prior_or_coverage_or_length_is_named():
+    with pytest.raises(ValueError, match=r"^prior\b"):
+        next_state_bits([1], [1], [1], [1], prior=0.0)
+    with pytest.raises(ValueError, match="next_state_bits needs"):
+        next_state_bits([1], [1], [], [])
+    with pytest.raises(ValueError, match=r"test_states \(2\) and test_next \(1\)"):
+        next_state_bits([1], [1], [1, 2], [1])
+    with pytest.raises(ValueError, match="coverage"):
+        states_per_place([1], ["p"], coverage=1.01)
+    with pytest.raises(ValueError, match=r"states \(2\) and places \(1\).*same length"):
+        states_per_place([1, 2], ["p"])

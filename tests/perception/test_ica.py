@@ -139,3 +139,53 @@ def test_score_of_chunks_equals_the_score_of_the_whole():
         # the slowness of chunks counts the steps across their borders
     assert score_outputs(S, "slowness") == pytest.approx(
         -np.min(np.mean(np.diff(S, axis=0) ** 2, axis=0)), rel=1e-12)
+
+
+def test_the_stabilised_newton_phase_keeps_the_separation():
+    # tol = 0 never converges: after max_iter // 2 fixed-point iterations, the other half are
+    # Hyvärinen's stabilised Newton steps w <- w - mu (E{z g(y)} - beta w) / (E{g'(y)} - beta);
+    # sub-Gaussian sources (uniform, square wave: E{g'} - beta > 0) stay separated as well as
+    # super-Gaussian ones (a step of the wrong sign drives the sub-Gaussian ones apart)
+    S, A = _sources(T=4000, seed=2)
+    X = S @ A.T
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ICAConvergenceWarning)
+        ica = FastICA(seed=1, tol=1e-300, max_iter=120).fit(X)
+    assert not ica.converged_ and ica.n_iter_ == 120
+    assert amari_index(ica.components_ @ A) < 0.05
+
+
+def test_transform_names_non_finite_input():
+    S, A = _sources(T=1000)
+    ica = FastICA(seed=0).fit(S @ A.T)
+    X = S @ A.T
+    X[3, 1] = np.nan
+    with pytest.raises(ValueError, match=r"^X\b"):
+        ica.transform(X)
+
+
+def test_the_three_scores_follow_their_formulas():
+    # kurtosis: sum_j |E{s_j^4} - 3|; sparseness: sum_j (1 - E|s_j|); slowness: -min_j E{ds_j^2}
+    S = np.array([[1.0, 2.0], [-1.0, 0.0], [1.0, -2.0], [-1.0, 0.0]])
+    assert score_outputs(S, "kurtosis") == pytest.approx(abs(1 - 3) + abs(8 - 3))
+    assert score_outputs(S, "sparseness") == pytest.approx((1 - 1) + (1 - 1))
+    assert score_outputs(S * 0.5, "sparseness") == pytest.approx((1 - 0.5) + (1 - 0.5))
+    assert score_outputs(S, "slowness") == pytest.approx(-min(4.0, 16 / 3))
+
+
+def test_the_units_of_the_input_do_not_matter():
+    # whitening is relative: the same sources at 1e-7 the scale separate the same way
+    S, A = _sources(T=3000)
+    X = S @ A.T
+    big = FastICA(seed=1).fit(X)
+    small = FastICA(seed=1).fit(X * 1e-7)
+    np.testing.assert_allclose(small.components_ * 1e-7, big.components_, rtol=1e-6, atol=1e-9)
+
+
+def test_degenerate_input_directions_are_refused():
+    S, A = _sources(T=1000)
+    X = S @ A.T
+    X = np.column_stack([X, X[:, 0] + X[:, 1]])  # 5 columns, 4 directions
+    with pytest.raises(ValueError, match="fewer than n_ica=5 non-degenerate directions"):
+        FastICA(seed=0).fit(X)
+    assert FastICA(seed=0, n_components=4).fit(X).components_.shape == (4, 5)

@@ -169,3 +169,69 @@ def test_threads_do_not_change_the_states():
     two = r.run(U, leak=leaks, threads=2)
     np.testing.assert_allclose(one, two, atol=1e-12)
     np.testing.assert_allclose(r.run(U, threads=2), r.run(U), atol=1e-12)
+
+
+def test_step_continues_eq1_from_a_given_state():
+    # reset(x0) sets x(t); step(u) returns x(t+1) = tanh((1-a) x0 + a (W_in u + W_res x0))
+    r = Reservoir(small(leak=(0.05, 0.15)), dtype="float64")
+    rng = np.random.default_rng(1)
+    x0, u = rng.uniform(-0.5, 0.5, r.n_neurons), rng.random(8)
+    r.reset(x0)
+    a = r.leak
+    want = np.tanh((1 - a) * x0 + a * (r.W_in @ u + r.W_res @ x0))
+    np.testing.assert_allclose(r.step(u), want, atol=1e-12)
+    np.testing.assert_allclose(r.run(u[None], x0=x0)[0], want, atol=1e-12)
+    r.reset()
+    np.testing.assert_allclose(r.step(u), np.tanh(a * (r.W_in @ u)), atol=1e-12)
+    with pytest.raises(ValueError, match="x0"):
+        r.reset(np.zeros(r.n_neurons + 1))
+
+
+def test_the_paper_presets():
+    # SMC09: 8 IR inputs, 600 neurons, leaks 0.05 / 0.15 by halves, rho 0.99, W_in +-2, p 0.075
+    p = ReservoirParams.smc09()
+    assert (p.n_inputs, p.n_neurons, p.spectral_radius, p.input_weight, p.input_prob) == (
+        8, 600, 0.99, 2.0, 0.075)
+    assert np.array_equal(expand_leak(p.leak, 4), [0.05, 0.05, 0.15, 0.15])
+    # ICANN09: 17 inputs, 400 neurons, leak 0.6, rho 0.9, W_in +-0.2, p 0.15
+    q = ReservoirParams.icann09()
+    assert (q.n_inputs, q.n_neurons, q.spectral_radius, q.input_weight, q.input_prob) == (
+        17, 400, 0.9, 0.2, 0.15)
+    assert np.array_equal(expand_leak(q.leak, 3), [0.6, 0.6, 0.6])
+    assert ReservoirParams.smc09(n_neurons=100, seed=4).n_neurons == 100  # overrides win
+
+
+def test_repr_shows_the_leak_rates():
+    assert "leak=0.05/0.15," in repr(Reservoir(small()))
+    assert "leak=0.3," in repr(Reservoir(small(leak=0.3)))
+
+
+def test_non_finite_input_sequence_is_named():
+    with pytest.raises(ValueError, match=r"\bU\b.*NaN"):
+        Reservoir(small()).run(np.full((4, 8), np.inf))
+
+
+def test_the_torch_backend_without_torch_says_how_to_install_it():
+    try:
+        import torch  # noqa: F401
+    except ImportError:
+        pass
+    else:
+        pytest.skip("torch is installed")
+    with pytest.raises(ImportError, match=r"hippo\[torch\]"):
+        Reservoir(small()).run(np.zeros((5, 8)), backend="torch")
+
+
+def test_from_weights_keeps_the_weights_and_records_their_radius():
+    r = Reservoir(small(leak=0.2), dtype="float64")
+    s = Reservoir.from_weights(r.W_in, r.W_res, 0.2)
+    assert s.dtype == "float32" and s.params.leak == 0.2
+    assert s.params.spectral_radius == pytest.approx(0.99, rel=1e-9)  # max |eigenvalue|
+    assert Reservoir.from_weights(r.W_in, r.W_res, 0.2, spectral_radius=5.0
+                                  ).params.spectral_radius == 5.0  # recorded, not applied
+    U = _inputs(20)
+    np.testing.assert_allclose(s.run(U), r.run(U), atol=1e-5)
+    one = Reservoir.from_weights(np.ones((1, 2)), np.full((1, 1), 0.5), 0.5, dtype="float64")
+    assert one.params.leak == 0.5
+    # one neuron: x(1) = tanh(0.5 * 0 + 0.5 * (u1 + u2 + 0.5 * 0))
+    assert one.run(np.array([[0.2, 0.4]]))[0, 0] == pytest.approx(np.tanh(0.3))

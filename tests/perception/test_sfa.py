@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from hippo.perception.sfa import SFA, SFAMoments, SFAParams, quadratic_expansion
+from hippo.perception.sfa import SFA, SFAMoments, SFAParams, chunk_bounds, quadratic_expansion
 
 
 def _mixture(T=4000, seed=0, extra_cols=0):
@@ -124,3 +124,81 @@ def test_float32_input_fits_like_float64():
     np.testing.assert_allclose(a.slowness_, b.slowness_, rtol=1e-10)
     np.testing.assert_allclose(a.transform(X32), b.transform(X32), atol=1e-9)
     np.testing.assert_allclose(a.fit_transform(X32), a.transform(X32), atol=1e-9)
+
+
+def _held_out_score(X, cutoff, n):
+    """The documented auto-cutoff score, from scratch: z-score X on all of it; on the first 80 %
+    whiten (directions with eigenvalue > cutoff * largest) and take the n slowest directions;
+    score = sum over units of held-out sum(y_dot^2) / sum(y^2) on the last 20 %."""
+    split = int(0.8 * len(X))
+    Z = (X - X.mean(axis=0)) / X.std(axis=0)
+    Z1, Z2 = Z[:split], Z[split:]
+    D1, D2 = np.diff(Z1, axis=0), np.diff(Z2, axis=0)
+    d, E = np.linalg.eigh(Z1.T @ Z1 / len(Z1))
+    keep = d > cutoff * d.max()
+    if keep.sum() < n:
+        return None
+    S = E[:, keep] / np.sqrt(d[keep])
+    _, V = np.linalg.eigh(S.T @ (D1.T @ D1 / len(D1)) @ S)
+    W = S @ V[:, :n]
+    return float(np.sum(np.sum((D2 @ W) ** 2, axis=0) / np.sum((Z2 @ W) ** 2, axis=0)))
+
+
+def test_auto_cutoff_scores_are_the_held_out_slowness_and_the_lowest_wins():
+    # columns on scales 0.01..100, two near-copies (eigenvalues ~1e-6 and ~1e-10 of the
+    # largest): the candidates keep 4, 5 or 6 directions and score differently
+    rng = np.random.default_rng(3)
+    X, _ = _mixture(T=3000, seed=3)
+    X = X[:, :4] * np.array([0.01, 1.0, 10.0, 100.0])
+    X = np.column_stack([X, X[:, 1] + 1e-3 * rng.standard_normal(len(X)),
+                         X[:, 2] + 1e-4 * rng.standard_normal(len(X))])
+    sfa = SFA(n_components=2, cutoff="auto").fit(X)
+    want = {c: _held_out_score(X, c, 2) for c in (10.0 ** -k for k in range(3, 13))}
+    want = {c: s for c, s in want.items() if s is not None}
+    assert len(set(np.round(list(want.values()), 6))) >= 3  # the candidates do differ
+    assert sfa.cutoff_scores_.keys() == want.keys()
+    for c, s in want.items():
+        assert sfa.cutoff_scores_[c] == pytest.approx(s, rel=1e-5), c
+    assert sfa.cutoff_ == min(want, key=want.get)
+
+
+def test_auto_cutoff_ties_go_to_the_largest_candidate():
+    # well-conditioned input: every candidate keeps every direction, all scores are equal, and
+    # the most conservative cutoff (1e-3, the first candidate) is kept
+    rng = np.random.default_rng(4)
+    t = np.arange(2000)
+    X = np.column_stack([np.sin(2 * np.pi * t / 500), rng.standard_normal((2000, 3))])
+    sfa = SFA(n_components=2, cutoff="auto").fit(X)
+    assert len(set(sfa.cutoff_scores_.values())) == 1 and len(sfa.cutoff_scores_) == 10
+    assert sfa.cutoff_ == 1e-3
+
+
+def test_quadratic_sfa_finds_the_slow_square_far_from_zero():
+    # the input is centred before the products are taken: with an offset of 1e4 (sd ~1) the
+    # products of uncentred inputs would bury x^2 under (1e4)^2 (relative eigenvalue ~1e-10,
+    # below the whitening cutoff)
+    rng = np.random.default_rng(1)
+    t = np.arange(5000)
+    slow = np.sin(2 * np.pi * t / 1500)
+    X = np.column_stack([slow * rng.choice([-1.0, 1.0], size=5000), rng.standard_normal(5000)])
+    quad = SFA(n_components=1, expansion="quadratic").fit_transform(X + 1e4)[:, 0]
+    assert abs(np.corrcoef(quad, slow ** 2)[0, 1]) > 0.99
+
+
+def test_quadratic_expansion_of_one_row_equals_its_row_in_a_batch():
+    Z = np.random.default_rng(0).standard_normal((5, 3))
+    np.testing.assert_array_equal(quadratic_expansion(Z[2]), quadratic_expansion(Z)[2])
+    assert quadratic_expansion(np.array([2.0, 3.0])).tolist() == [2, 3, 4, 6, 9]
+
+
+def test_chunks_hold_rows_rows_and_the_split_is_a_boundary():
+    assert chunk_bounds(10, 3, rows=4) == [0, 4, 8, 10]
+    assert chunk_bounds(10, 3, rows=4, split=5) == [0, 4, 5, 8, 10]
+    assert chunk_bounds(1000, 10) == [0, 1000]  # ~2 million values per chunk by default
+
+
+def test_three_samples_are_enough_two_are_not():
+    X = np.array([[0.0, 1.0], [1.0, 0.0], [0.0, 0.5]])
+    assert SFA(n_components=1).fit(X).transform(X).shape == (3, 1)
+    with pytest.raises(ValueError, match="at least 3 samples"):
+        SFA(n_components=1).fit(X[:2])

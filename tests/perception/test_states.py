@@ -193,6 +193,10 @@ def test_leaving_the_coloured_floor_hands_over_to_the_most_active_place():
     assert layer.key(colour) == ("colour", 2, None)
     ev = layer.step(weak, colour=0, moving=True, dt=0.2)
     assert ev.changed and layer.key(ev.winner).kind == "place"
+    # the most active one: place 2 when it is the strongest
+    layer.step(np.array([0.0, 0.01, 0.05]), colour=3, moving=True, dt=0.2)
+    ev = layer.step(np.array([0.0, 0.01, 0.05]), colour=0, moving=True, dt=0.2)
+    assert layer.key(ev.winner) == ("place", 2, None)
 
 
 def _drive_to(layer, acts, ticks, moving=True):
@@ -308,3 +312,66 @@ def test_context_states_merge_place_cells_that_take_turns():
     plain = StateLayer(StateLayerParams(normalize="fixed", place_scale=0.5), n_place=5)
     stays = _one_hot_laps(plain, 5, np.random.default_rng(1), [(0, 1, 2, 4), (0, 1, 3, 4)], 20)
     assert len({w for u, w in stays if u in (2, 3)}) == 2
+
+
+def test_the_pooled_variance_is_an_average_that_falls_below_its_prior():
+    # rate = dt / norm_tau = 0.5; a quiet population ([0.1, 0.1]) pulls the variance from the
+    # prior 1 towards its own spread: m1 = 0.05, v1 = 0.5 (1 + 0.5 * 0.01) = 0.5025, and the
+    # second tick is standardised by them
+    layer = StateLayer(StateLayerParams(norm_tau=0.4, smoothing=0.0))
+    a = np.array([0.1, 0.1])
+    layer.step(a, dt=DT)
+    layer.step(a, dt=DT)
+    z = (0.1 - 0.05) / math.sqrt(0.5025)
+    assert layer.place_activity == pytest.approx(np.tanh([z, z] / np.float64(2.0)))
+
+
+def test_a_reset_that_keeps_the_states_restarts_the_normalisation():
+    for normalize in ("unit", "pooled"):
+        p = StateLayerParams(normalize=normalize, norm_tau=1.0, smoothing=0.0)
+        used, fresh = StateLayer(p), StateLayer(p)
+        for a in ([5.0, 0.0], [4.0, 1.0], [5.0, 0.5]):
+            used.step(np.array(a), dt=DT)
+        used.reset(keep_states=True)
+        assert used.states == [StateKey("place", 0, None), StateKey("place", 1, None)]
+        a = np.array([2.0, 0.5])
+        used.step(a, dt=DT)
+        fresh.step(a, dt=DT)
+        np.testing.assert_array_equal(used.place_activity, fresh.place_activity)
+
+
+def test_the_first_tick_goes_to_the_strongest_input():
+    layer = StateLayer()
+    assert layer.key(layer.step(np.array([0.1, 0.9, 0.3]), dt=DT).winner) == (
+        StateKey("place", 1, None))
+    moving = StateLayer()  # no place cells, no floor, no sound: proprioception alone
+    assert moving.key(moving.step(None, moving=True, dt=DT).winner) == (
+        StateKey("moving", None, None))
+    still = StateLayer()
+    assert still.key(still.step(None, moving=False, dt=DT).winner) == (
+        StateKey("still", None, None))
+
+
+def test_a_winning_colour_is_fully_active_while_perceived():
+    layer = StateLayer()
+    layer.step(np.array([0.1, 0.9]), dt=DT)
+    ev = layer.step(np.array([0.1, 0.9]), colour=2, dt=DT)
+    assert layer.key(ev.winner) == StateKey("colour", 2, None)
+    assert layer.activity[ev.winner] == 1.0
+
+
+def test_recruit_keeps_the_context_of_a_conjunctive_state():
+    layer = StateLayer()
+    place = layer.recruit("place", 4)
+    sid = layer.recruit("still", None, context=place)
+    assert layer.key(sid) == StateKey("still", None, place)
+    assert layer.find("still", None, place) == sid
+    with pytest.raises(ValueError, match="never seen"):
+        layer.find("still")  # "still" without a context is another state
+
+
+def test_context_params_reach_the_context_states():
+    from hippo.perception.contexts import ContextParams
+
+    cp = ContextParams(min_count=9, max_depth=2)
+    assert StateLayer(StateLayerParams(contexts=cp)).contexts.params == cp

@@ -82,3 +82,30 @@ def test_bad_input_is_named():
         nonocc.step([0.5], DT)
     with pytest.raises(ValueError, match="fall_fraction"):
         NonOccurrenceParams(fall_fraction=1.5)
+
+
+def test_the_timed_rule_fires_once_after_the_tolerance_and_says_so_in_fired():
+    # N = [tau_hat / T_hat >= 1 + max(r, a / T_hat)]: T_hat = 10 s, r = 0.05, a = 0.6 s ->
+    # fires at the first elapsed fraction >= 1.06, once; ``fired`` lists it at that tick only
+    from hippo.timing.transitions import TransitionReadout
+
+    nonocc = NonOccurrence(NonOccurrenceParams(rel_tolerance=0.05, abs_tolerance=0.6))
+
+    def ro(frac, delay=10.0):
+        return {(0, 1): TransitionReadout((0, 1), 0.5, 0.8, delay, frac, frac >= 1.0)}
+
+    assert nonocc.step(ro(1.05), DT) == [] and nonocc.fired == []
+    assert nonocc.step(ro(1.06), DT) == [(0, 1)] and nonocc.fired == [(0, 1)]
+    assert nonocc.step(ro(1.5), DT) == [] and nonocc.fired == []
+    assert nonocc.active == {(0, 1)}
+    # no stored delay (0): nothing to be late for, never fires
+    nonocc.reset()
+    assert all(nonocc.step(ro(f, delay=0.0), DT) == [] for f in (1.0, 2.0, 50.0))
+
+
+def test_bad_input_names_the_argument_and_the_type():
+    nonocc = NonOccurrence()
+    with pytest.raises(ValueError, match=r"^dt\b"):
+        nonocc.step({}, 0.0)
+    with pytest.raises(ValueError, match="got list"):
+        nonocc.step([0.5], DT)

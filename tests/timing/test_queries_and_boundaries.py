@@ -137,3 +137,46 @@ def test_run_trial_names_a_bad_delay():
 
     with pytest.raises(ValueError, match="delay"):
         run_trial(TimingChain(), 0, 1, -1.0, dt=DT, jitter=0.0)
+
+
+def test_a_chain_wires_its_parts_with_the_given_params():
+    from hippo.timing import NonOccurrenceParams, SpectralParams, TransitionParams
+    from hippo.timing.chain import TimingChain
+
+    chain = TimingChain(SpectralParams(n_cells=16), TransitionParams(min_strength=0.5),
+                        NonOccurrenceParams(min_peak=0.3))
+    assert chain.step(0, DT).battery.activity.shape == (16,)
+    assert chain.cells.timing is chain.spectral
+    assert chain.cells.params.min_strength == 0.5 and chain.nonocc.params.min_peak == 0.3
+
+
+def test_a_chain_of_parts_that_do_not_fit_is_refused():
+    from hippo.timing import TransitionCells
+    from hippo.timing.chain import TimingChain
+
+    with pytest.raises(ValueError, match=r"^cells must read the batteries of spectral"):
+        TimingChain.of(SpectralTiming(), TransitionCells(SpectralTiming()))
+
+
+def test_run_trial_stays_after_s_in_b_and_takes_the_modules_one_by_one():
+    from hippo.timing import NonOccurrence, TransitionCells
+    from hippo.timing.chain import TimingChain
+    from hippo.timing.trials import run_trial
+
+    chain = TimingChain()
+    trace = run_trial(chain, 0, 1, 3.0, jitter=0.0)
+    assert trace.end == pytest.approx(3.0) and chain.state == 1
+    assert chain.spectral.tau == pytest.approx(4.0)  # b lasts ``after`` = 4 s by default
+    run_trial(chain, 2, 3, 1.0, jitter=0.0, after=1.0)
+    assert chain.spectral.tau == pytest.approx(1.0)
+    # the same trial through the modules one by one teaches the same delay
+    timing = SpectralTiming()
+    cells = TransitionCells(timing)
+    run_trial(timing, cells, 0, 1, 3.0, jitter=0.0)
+    assert cells.learned_delay((0, 1)) == chain.cells.learned_delay((0, 1))
+    with pytest.raises(ValueError, match=r"^nonocc goes with run_trial"):
+        run_trial(TimingChain(), 0, 1, 3.0, jitter=0.0, nonocc=NonOccurrence())
+    with pytest.raises(TypeError, match=r"takes a, b and delay"):
+        run_trial(TimingChain(), 0, 1, jitter=0.0)
+    with pytest.raises(ValueError, match="jitter > 0 needs rng"):
+        run_trial(TimingChain(), 0, 1, 3.0, jitter=0.1)

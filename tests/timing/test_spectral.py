@@ -109,3 +109,27 @@ def test_bad_input_is_named(timing):
 def test_readout_of_any_scaled_battery_is_its_time(tau, gain):
     timing = SpectralTiming()
     assert timing.readout(gain * timing.tuning(tau)) == pytest.approx(tau, rel=2e-3)
+
+
+def test_readout_names_a_bad_pattern():
+    timing = SpectralTiming()
+    bad = timing.tuning(3.0).copy()
+    bad[5] = np.nan
+    with pytest.raises(ValueError, match=r"^pattern\b"):
+        timing.readout(bad)
+    with pytest.raises(ValueError, match=r"pattern must have shape \(128,\)"):
+        timing.readout(np.ones(5))
+
+
+def test_tuning_names_a_bad_time():
+    with pytest.raises(ValueError, match=r"^tau\b"):
+        SpectralTiming().tuning(math.nan)
+
+
+def test_reset_starts_the_clock_again_at_zero():
+    timing = SpectralTiming()
+    assert timing.tau == 0.0
+    for _ in range(5):
+        timing.step(0, 0.2)
+    timing.reset()
+    assert timing.tau == 0.0 and timing.state is None

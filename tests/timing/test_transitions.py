@@ -180,3 +180,67 @@ def test_settled_ticks_skip_learning_with_the_same_numbers():
     for key in a.transitions:
         np.testing.assert_array_equal(a.weights(key), b.weights(key))
     assert ra == rb
+
+
+def test_reproduce_reports_the_closed_loop_waits_the_stored_delay_and_the_lag():
+    # HIREL Table I in miniature: 3 teacher trials at 7 s, then 5 waits the system ends itself
+    # (each within ~1.5 ticks of 7 s), the stored delay within 2 %, and the non-occurrence
+    # neuron firing after the omitted event's time, within a fifth of the delay (Weber)
+    r = reproduce(7.0, seed=0)
+    assert r.delay == 7.0 and len(r.waits) == 5
+    assert all(abs(w - 7.0) < 0.3 for w in r.waits), r.waits
+    assert abs(r.learned - 7.0) < 0.14
+    assert 0.0 < r.non_occurrence_lag < 0.2 * 7.0
+
+
+def test_more_states_than_the_first_allocation_are_learned_alike():
+    # a ring of 20 states (the per-state arrays start with room for 8 and grow), 2 s in each:
+    # every transition of the ring stores 2 s, the last as well as the first
+    timing = SpectralTiming()
+    cells = TransitionCells(timing)
+    for _ in range(3):
+        for s in range(20):
+            for _ in range(10):
+                cells.step(timing.step(s, DT), DT)
+    assert len(cells.transitions) == 20
+    for key in [(0, 1), (8, 9), (18, 19), (19, 0)]:
+        assert cells.learned_delay(key) == pytest.approx(2.0, rel=0.05), key
+
+
+def test_the_readout_depends_on_the_battery_pattern_only():
+    import dataclasses
+
+    timing, cells, _, _ = learned(5.0)
+    twin_timing, twin, _, _ = learned(5.0)
+    for _ in range(12):
+        battery = timing.step(0, DT)
+        copy = dataclasses.replace(twin_timing.step(0, DT),
+                                   activity=battery.activity.copy())  # not the battery's own
+        assert twin.step(copy, DT) == cells.step(battery, DT)
+    assert cells.elapsed == twin.elapsed > 2.0
+
+
+def test_the_teacher_comes_at_the_earlier_of_two_equally_near_ticks():
+    # dt = 0.25 (exact in binary), delay 1.125: ticks at 1.0 and 1.25 are equally near; the
+    # rule "tau >= delay - dt/2" takes 1.0
+    from hippo.timing.chain import TimingChain
+    from hippo.timing.trials import run_trial
+
+    assert run_trial(TimingChain(), 0, 1, 1.125, dt=0.25, jitter=0.0).end == 1.0
+
+
+def test_a_negative_transition_source_is_named():
+    _, cells, _, _ = learned(3.0, pairings=1)
+    with pytest.raises(ValueError, match=r"^transition source\b"):
+        cells.learned_delay((-1, 1))
+
+
+def test_a_delay_beyond_the_battery_says_how_to_time_it():
+    from hippo.timing import DelayRangeWarning, SpectralParams
+
+    timing = SpectralTiming(SpectralParams(mu_max=10.0))
+    cells = TransitionCells(timing)
+    for _ in range(80):  # 16 s in state 0, beyond mu_max = 10 s
+        cells.step(timing.step(0, DT), DT)
+    with pytest.warns(DelayRangeWarning, match=r"raise SpectralParams.mu_max to time it$"):
+        cells.step(timing.step(1, DT), DT)

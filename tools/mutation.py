@@ -1,0 +1,320 @@
+"""Mutation score of the test suite over hippo's neural modules (mutmut 3).
+
+Run: ``nice -n 10 python tools/mutation.py [MODULE ...] [--sample N --seed S] [--survivors]
+[--json FILE]`` (default modules: ``NEURAL_MODULES``). Needs mutmut:
+``pip install -e ".[mutation]"``.
+
+The tool builds a scratch copy of the project in ``--out`` (``hippo/``, ``tests/``, and
+``pyproject.toml`` with a ``[tool.mutmut]`` section that mutates only the given modules and
+selects only their fast tests: ``DEFAULT_TESTS`` per module plus ``COMMON_TESTS``), runs
+``mutmut run`` there on one worker, and prints per module the number of mutants, the number
+killed and the score
+
+    score = (killed + timeout) / (mutants tested),
+
+mutmut's own definition: a mutant that no selected test reaches ("no tests") counts as
+surviving. The "adjusted" score leaves out the survivors that ``EXCLUDED`` lists (equivalent
+mutants, checked by hand, and the torch backend, whose tests skip without torch). For each
+mutant mutmut runs only the selected tests that reach the mutated function. The repository
+itself is never modified. ``--sample N`` tests at most N mutants per module (all of a module
+with fewer), drawn with ``--seed``; the table then gives ``sampled/generated``.
+``--survivors`` lists the surviving mutants (in ``--out``, ``mutmut show NAME`` prints one's
+diff). Same source, tests and seed: same mutants. ``--after JSON`` retests only the survivors
+of an earlier run (its ``--json``) after tests were added.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import random
+import re
+import shutil
+import subprocess
+import sys
+from collections import Counter
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+# the fast test files run against each module's mutants (the slow ones are deselected anyway)
+DEFAULT_TESTS: dict[str, list[str]] = {
+    "hippo/timing/": ["tests/timing"],
+    "hippo/cognitive_map/": ["tests/cognitive_map"],
+    "hippo/perception/sfa.py": ["tests/perception/test_sfa.py"],
+    "hippo/perception/ica.py": ["tests/perception/test_ica.py"],
+    "hippo/perception/reservoir.py": ["tests/perception/test_reservoir.py"],
+    "hippo/perception/states.py": ["tests/perception/test_states.py"],
+}
+
+# run for every module: the bad-input table and the loaders' fuzz tests check the validation
+COMMON_TESTS = ["tests/test_bad_inputs.py", "tests/test_loaders_fuzz.py",
+                "tests/test_param_ranges.py"]
+
+# Surviving mutants that cannot change behaviour (or that this machine cannot test), each
+# checked by hand: (module, regex on the removed line (or "name:" and a regex on the mutant's
+# name), regex on the added line, reason). They
+# are listed apart and left out of the "adjusted" score; the raw score counts them.
+EXCLUDED: list[tuple[str, str, str, str]] = [
+    ("*", r"check_finite=False", r"check_finite=None",
+     "equivalent: None is falsy, as False"),
+    ("hippo/cognitive_map/quality.py", r"zip\(.*strict=True\)", r"zip\((?!.*strict=True)",
+     "equivalent: the lengths are compared (ValueError) before the zip"),
+    ("hippo/cognitive_map/quality.py", r"\[s\] \+= 1", r"\[s\] \+= 2",
+     "equivalent: every count doubled, the fractions covered are the same"),
+    ("hippo/cognitive_map/localise.py", r"- self.t0 >= self.params.max_time - 1e-9",
+     r"- self.t0 > self.params.max_time - 1e-9",
+     "equivalent: differs only when t - t0 equals max_time - 1e-9 to the last bit"),
+    ("*", r'closed="neither"', r'closed=(None|"NEITHER"|"XXneitherXX")',
+     "equivalent: check_range treats an unknown 'closed' as 'neither'"),
+    ("hippo/cognitive_map/planner.py", r"dijkstra\(mat, directed=True, indices=n\)",
+     r"dijkstra\(mat, indices=n\)", "equivalent: directed=True is scipy's default"),
+    ("hippo/cognitive_map/planner.py", r"if level <= 0:", r"if level < 0:",
+     "equivalent: a zero level gives level * w = 0, never above the input"),
+    ("hippo/perception/reservoir.py", r"with blas_threads\(threads\)",
+     r"with blas_threads\(None\)",
+     "equivalent: the thread count does not change the states (tested)"),
+    ("hippo/perception/reservoir.py", r"if A.shape\[0\] == 1:", r"if A.shape\[1\] == 1:",
+     "equivalent: the batched loop computes the same eq. 1 as the shared-leak fast path"),
+    ("hippo/perception/reservoir.py", r"_run_torch|detach|torch", r"",
+     "not measurable here: the torch backend's tests skip without torch"),
+    ("hippo/perception/reservoir.py", r"name:_run_torch__", r"",
+     "not measurable here: the torch backend's tests skip without torch"),
+    ("hippo/perception/reservoir.py", r"spectral_radius=0.99", r"(?s)^(?!.*spectral_radius)",
+     "equivalent: SMC09's spectral radius is ReservoirParams' default"),
+    ("hippo/perception/reservoir.py", r"leak=\(0.05, 0.15\)", r"(?s)^(?!.*leak=)",
+     "equivalent: SMC09's leak rates are ReservoirParams' default"),
+    ("hippo/cognitive_map/graphml.py", r"graph._pos_n.get\(s, 1\)", r"graph._pos_n.get\(s, \)",
+     "equivalent: every state with a position has its count in _pos_n"),
+    ("hippo/perception/sfa.py", r"overwrite_a=False", r"overwrite_a=True",
+     "equivalent: the matrix is not used after its eigendecomposition"),
+    ("hippo/perception/sfa.py", r"\* inv / first.n$", r"\* inv \* first.n$",
+     "equivalent: C1 scaled by n^2 keeps its eigenvalue ratios; the score is scale-free"),
+    ("hippo/perception/sfa.py", r"dtype=np.float64\) @ M", r"\) @ M",
+     "equivalent: the product with the float64 M is float64 anyway"),
+    ("hippo/perception/ica.py", r"self._whiten\(0, self.T\)", r"self._whiten\(None, self.T\)",
+     "equivalent: rows [None:T] are rows [0:T]"),
+    ("hippo/timing/spectral.py", r"self._battery_memo.get\(tau\)|_battery_memo\) >= 4096",
+     r"_battery_memo.get\(None\)|_battery_memo\) >= 4097",
+     "equivalent: a memo of battery patterns (a miss recomputes the same pattern)"),
+    ("hippo/timing/spectral.py", r"np.diff\(codes\) > 1e-12", r"np.diff\(codes\) >= 1e-12",
+     "equivalent: differs only for two codes exactly 1e-12 apart"),
+    ("hippo/timing/transitions.py", r"np.asarray\(tau, dtype=float\)", r"np.asarray\(tau, ",
+     "equivalent: tuning() converts tau to float itself"),
+]
+
+KILLED = {"killed", "timeout", "segfault", "caught by type check"}
+
+
+def default_tests(module: str) -> list[str]:
+    """The test paths that ``DEFAULT_TESTS`` names for ``module`` (a path under hippo/)."""
+    for prefix, tests in DEFAULT_TESTS.items():
+        if module == prefix or (prefix.endswith("/") and module.startswith(prefix)):
+            return tests
+    raise ValueError(f"module: no default tests for {module!r}; pass --tests")
+
+
+def _toml_list(items: list[str]) -> str:
+    return "[" + ", ".join(json.dumps(i) for i in items) + "]"
+
+
+def prepare(modules: list[str], tests: list[str], work: Path) -> None:
+    """A scratch project in ``work`` whose ``[tool.mutmut]`` mutates ``modules`` only."""
+    if work.exists():
+        shutil.rmtree(work)
+    work.mkdir(parents=True)
+    ignore = shutil.ignore_patterns("__pycache__", "*.pyc", ".hypothesis")
+    shutil.copytree(ROOT / "hippo", work / "hippo", ignore=ignore)
+    shutil.copytree(ROOT / "tests", work / "tests", ignore=ignore)
+    text = (ROOT / "pyproject.toml").read_text()
+    text += (
+        "\n[tool.mutmut]\n"
+        'source_paths = ["hippo"]\n'
+        f"only_mutate = {_toml_list(modules)}\n"
+        f"pytest_add_cli_args_test_selection = {_toml_list(tests)}\n"
+        'pytest_add_cli_args = ["-p", "no:cacheprovider", "-q", "-x"]\n'
+        "use_git_change_detection = false\n"
+    )
+    (work / "pyproject.toml").write_text(text)
+
+
+def _statuses(work: Path) -> dict[str, str]:
+    from mutmut.stats import status_by_exit_code
+
+    out: dict[str, str] = {}
+    for meta in (work / "mutants").rglob("*.meta"):
+        data = json.loads(meta.read_text())
+        for name, code in data.get("exit_code_by_key", {}).items():
+            out[name] = status_by_exit_code[code]
+    return out
+
+
+_DIFFS = """
+import json, sys
+from mutmut.__main__ import find_mutant
+from mutmut.mutation.diff_apply import get_diff_for_mutant
+out = {}
+for name in json.load(sys.stdin):
+    lines = get_diff_for_mutant(name, path=find_mutant(name).path).splitlines()
+    body = [ln for ln in lines if not ln.startswith(("---", "+++"))]
+    out[name] = ["\\n".join(ln[1:].strip() for ln in body if ln.startswith(c)) for c in "-+"]
+print(json.dumps(out))
+"""
+
+
+def diffs(work: Path, names: list[str]) -> dict[str, tuple[str, str]]:
+    """The removed and the added source of each mutant (as ``mutmut show`` prints them)."""
+    if not names:
+        return {}
+    run_ = subprocess.run([sys.executable, "-c", _DIFFS], cwd=work, input=json.dumps(names),
+                          capture_output=True, text=True, check=True)
+    return {k: (v[0], v[1]) for k, v in json.loads(run_.stdout.splitlines()[-1]).items()}
+
+
+def excluded_reason(module: str, name: str, removed: str, added: str) -> str | None:
+    """The reason ``EXCLUDED`` gives for this surviving mutant, or None."""
+    for mod, old, new, reason in EXCLUDED:
+        hit = (re.search(old[5:], name) if old.startswith("name:")
+               else re.search(old, removed, re.M))
+        if (mod == "*" or mod == module) and hit and re.search(new, added, re.M):
+            return reason
+    return None
+
+
+def _of(module: str, names: list[str] | dict[str, str]) -> list[str]:
+    """The mutant names of ``module`` (mutmut names them ``hippo.timing.nlms.x...``)."""
+    prefix = module.removesuffix(".py").replace("/", ".") + ".x"
+    return sorted(n for n in names if n.startswith(prefix))
+
+
+def run(modules: list[str], tests: list[str], work: Path, sample: int | None, seed: int,
+        children: int, *, reuse: bool = False, only: dict[str, list[str]] | None = None,
+        report: bool = False, sizes: dict[str, int] | None = None) -> list[dict[str, object]]:
+    """Run mutmut once over ``modules``; per module, the counts, the score and the survivors.
+
+    ``reuse``: keep the scratch project of an interrupted run (same modules, tests and source)
+    and test only the mutants it has no result for. ``only``: per module, test only these
+    mutants (the survivors of an earlier run); the others count as killed, which holds when
+    the tests have only been added to since (a killed mutant stays killed). ``report``: run
+    nothing, report the results already in ``work``. ``sizes``: per module, the sample size
+    (instead of ``sample``; an earlier run's, so that the same mutants are drawn)."""
+    for module in modules:
+        if not (ROOT / module).is_file():
+            raise ValueError(f"module: {module!r} is not a file of the repository")
+    if report and not (work / "mutants").is_dir():
+        raise ValueError(f"out: no mutmut run in {work}")
+    if not ((reuse or report) and (work / "mutants").is_dir()):
+        prepare(modules, tests, work)
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", HIPPO_QUIET="1")
+    cmd = [sys.executable, "-m", "mutmut", "run", "--max-children", str(children)]
+    chosen: dict[str, list[str]] = {}
+    if sample is not None or only is not None or sizes:
+        if not report:
+            # generate the mutants first (a run on a name that matches nothing tests nothing)
+            subprocess.run([*cmd, "no-such-mutant"], cwd=work, capture_output=True, env=env,
+                           check=False)
+        generated = _statuses(work)
+        for module in modules:
+            names = _of(module, generated)
+            k = min((sizes or {}).get(module) or sample or len(names), len(names))
+            chosen[module] = sorted(random.Random(f"{seed}/{module}").sample(names, k))
+        todo = [n for names in chosen.values() for n in names]
+        if only is not None:
+            todo = [n for n in todo if n in {m for v in only.values() for m in v}]
+        if reuse:
+            todo = [n for n in todo if generated[n] == "not checked"]
+        cmd += todo or ["no-such-mutant"]
+    if not report:
+        with (work / "mutmut.log").open("w") as fh:
+            subprocess.run(cmd, cwd=work, stdout=fh, stderr=subprocess.STDOUT, env=env,
+                           check=False)
+    statuses = _statuses(work)
+    if only is not None:
+        rerun = {m for v in only.values() for m in v}
+        statuses = {n: (st if n in rerun else "killed") for n, st in statuses.items()}
+    results = []
+    for module in modules:
+        names = chosen.get(module) or _of(module, statuses)
+        counts = Counter(statuses[n] for n in names)
+        tested = sum(v for k, v in counts.items() if k not in {"skipped", "not checked"})
+        killed = sum(counts[k] for k in KILLED)
+        survivors = [n for n in names
+                     if statuses[n] not in KILLED | {"skipped", "not checked"}]
+        excluded = {}
+        for n, (removed, added) in diffs(work, survivors).items():
+            reason = excluded_reason(module, n, removed, added)
+            if reason:
+                excluded[n] = reason
+        results.append({
+            "module": module, "generated": len(_of(module, statuses)), "sampled": len(names),
+            "seed": seed if chosen else None, "counts": dict(counts),
+            "tested": tested, "killed": killed,
+            "score": killed / tested if tested else float("nan"),
+            "adjusted": (killed / (tested - len(excluded)) if tested > len(excluded)
+                         else float("nan")),
+            "survivors": survivors, "excluded": excluded,
+        })
+    return results
+
+
+NEURAL_MODULES = [
+    *(f"hippo/timing/{m}.py" for m in
+      ("nlms", "non_occurrence", "spectral", "chain", "trials", "transitions")),
+    "hippo/perception/sfa.py", "hippo/perception/ica.py", "hippo/perception/reservoir.py",
+    "hippo/perception/states.py",
+    *(f"hippo/cognitive_map/{m}.py" for m in
+      ("actions", "drives", "graph", "graphml", "localise", "planner", "quality", "synthetic")),
+]
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("modules", nargs="*", default=NEURAL_MODULES,
+                   help="paths such as hippo/timing/nlms.py (default: the neural modules)")
+    p.add_argument("--tests", nargs="+", help="test paths (default: DEFAULT_TESTS + COMMON_TESTS)")
+    p.add_argument("--sample", type=int,
+                   help="per module, test at most this many mutants, drawn with --seed")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--children", type=int, default=1, help="mutmut workers (default 1)")
+    p.add_argument("--out", type=Path, default=ROOT / "out" / "mutation")
+    p.add_argument("--survivors", action="store_true", help="list the surviving mutants")
+    p.add_argument("--json", type=Path, help="write the per-module results as JSON")
+    p.add_argument("--reuse", action="store_true",
+                   help="continue an interrupted run in --out (test only untested mutants)")
+    p.add_argument("--report", action="store_true",
+                   help="run nothing: report the results of the run in --out")
+    p.add_argument("--after", type=Path, metavar="JSON",
+                   help="retest only the survivors listed in this --json of an earlier run "
+                        "(same --seed; its sample sizes) after tests were added")
+    a = p.parse_args(argv)
+    if a.sample is not None and a.sample < 1:
+        p.error(f"--sample must be >= 1, got {a.sample}")
+    tests = a.tests or sorted({t for m in a.modules for t in default_tests(m)} | set(COMMON_TESTS))
+    only = sizes = None
+    if a.after:
+        before = json.loads(a.after.read_text())["results"]
+        only = {r["module"]: r["survivors"] for r in before}
+        sizes = {r["module"]: r["sampled"] for r in before}
+    results = run(a.modules, tests, a.out.resolve(), a.sample, a.seed, a.children,
+                  reuse=a.reuse, only=only, report=a.report, sizes=sizes)
+    print(f"tests: {' '.join(tests)}")
+    print(f"{'module':36s} {'mutants':>9s} {'killed':>6s} {'score':>6s} {'excl':>4s} "
+          f"{'adjusted':>8s}  statuses")
+    for r in results:
+        size = (f"{r['sampled']}/{r['generated']}" if r["sampled"] < r["generated"]
+                else f"{r['generated']}")
+        print(f"{r['module']:36s} {size:>9s} {r['killed']:>6d} {r['score']:6.1%} "
+              f"{len(r['excluded']):>4d} {r['adjusted']:8.1%}  {r['counts']}")
+        if a.survivors:
+            for name in r["survivors"]:
+                print("   ", name, f"[excluded: {r['excluded'][name]}]"
+                      if name in r["excluded"] else "")
+    if a.json:
+        a.json.write_text(json.dumps({"tests": tests, "seed": a.seed, "sample": a.sample,
+                                      "results": results}, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
