@@ -94,8 +94,13 @@ class Session:
 
     def put(self, x: float, y: float, heading: float, *, event: str = "kidnap") -> None:
         """Pick the robot up and put it down at ``(x, y, heading)``; the agent knows it was
-        lifted and how much it was turned (not where it is)."""
-        turned = wrap_angle(heading - self.world.truth.pose[2])
+        lifted and how much it was turned (not where it is).
+
+        The turn is counted from the heading the agent last integrated: :attr:`obs`, the
+        observation it has not acted on yet, holds one more tick of odometry (its rotation
+        would otherwise be lost at every lift, and the heading estimate would drift by up to
+        half a radian per kidnap: place preference, tuning seed 0, 0.85 rad after 8 trials)."""
+        turned = wrap_angle(heading - self.world.truth.pose[2] + float(self.obs.odometry[2]))
         self.world.place_robot(x, y, heading, event=event)
         self.agent.lifted(heading_change=turned)
 

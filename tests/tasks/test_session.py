@@ -101,3 +101,14 @@ def test_path_length_starts_where_the_robot_was_put():
     t_half = log.column("t")[19]
     x_half = log.column("x")[19]
     assert log.path_length(0, (20.0, 15.0), t_half) == pytest.approx(x_half - 20.0, abs=0.05)
+
+
+def test_a_kidnap_keeps_the_heading_estimate_exact_even_mid_turn():
+    # the robot is lifted while turning: the last observation's rotation, which the agent has
+    # not integrated yet, must count (it was lost before: up to 0.5 rad per lift)
+    world, agent, s = _session()
+    s.run(seconds=2.0)
+    s.run(400, until=lambda o: abs(o.odometry[2]) > 0.05)
+    assert abs(s.obs.odometry[2]) > 0.05
+    s.put(150.0, 15.0, 2.0)
+    assert agent.brain.pi.heading == pytest.approx(2.0, abs=1e-9)
