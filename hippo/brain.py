@@ -300,6 +300,10 @@ class Brain:
             prev = ctx
             entered_at, entry_pose = self._entries[ctx]
         prev, entered_at = self.decide.intended_source(new, kind, prev, entered_at)
+        cur = self.decide.current
+        if (kind.is_context and cur is not None and cur[0] == prev and cur[1] != new
+                and cur in self.graph and self.graph.inferred(cur)):
+            self.graph.remove_transition(cur)  # an inferred way back that led elsewhere
         if prev is not None:
             self._learn(prev, new, t - entered_at, entry_pose)
         if kind.is_context:
@@ -325,6 +329,9 @@ class Brain:
         if self.p.forget < 1.0 and self.graph.decay(self.p.forget):
             self.drives.prune(self.graph)
         tr = self.graph.add_transition(prev, new, action, delay, time=self.t)
+        if (self.p.infer_reverse and not action.is_wait and self.graph.count(tr) == 1
+                and self.kind(prev).is_context and self.kind(new).is_context):
+            self.graph.infer_reverse(tr, time=self.t)
         self.graph.observe_position(new, (x1, y1))
         self.last_transition = tr
         if self.kind(new) == StateKind.SOUND and "sound" in self.drives:

@@ -94,6 +94,11 @@ class BrainParams:
         its strength to 1); the drives' links to forgotten transitions go with them. 1 (the
         default): the map never forgets, as in HIREL's experiments.
 
+    infer_reverse: a new move between places ``A -> B`` also enters the map the way back,
+        ``B -> A`` (heading + π, same distance) as an inferred move
+        (:meth:`~hippo.cognitive_map.graph.TransitionGraph.infer_reverse`; the planner weighs
+        it by ``PlannerParams.inferred_weight``); an inferred move that leads to another place
+        than its end is forgotten, one that leads there becomes a known move.
     Extinction of goal links (HIREL eq. 4's decay term) is a drive's parameter
     (``DriveParams.extinction``, default 0): see :meth:`hippo.decision.Decider.check_wait`.
     """
@@ -122,6 +127,7 @@ class BrainParams:
     runup_hops: int = 3
     release_distance: float = 60.0
     forget: float = 1.0
+    infer_reverse: bool = False
     states: StateLayerParams = field(default_factory=StateLayerParams)
     spectral: SpectralParams = field(default_factory=SpectralParams)
     #: latency 0.4 s = one tick from decision to motion + one tick of proprioceptive debounce

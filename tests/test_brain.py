@@ -338,3 +338,28 @@ def test_only_a_wait_where_the_anchor_said_anchors_the_next_run_up():
     brain.runups = {"a": 100.0}
     brain.odometer = 40.0
     assert anchors("b")                        # no run-up taught for b: nothing to check
+
+
+def test_a_new_move_infers_its_way_back_which_experience_confirms_or_forgets():
+    brain, run = make(infer_reverse=True)
+    for where in "BAC":                      # B -> A -> C, heading 0 (odometry: forward)
+        run.ticks(15, where, moving=True)
+    a, b, c = (brain.layer.find("place", i) for i in range(3))
+    g = brain.graph
+    assert not g.inferred((b, a)) and g.inferred((a, b)) and g.inferred((c, a))
+    assert g.action((c, a)).heading == pytest.approx(math.pi)
+    # told to go back C -> A, the robot entered B instead: the inferred move is forgotten
+    brain.decide.current = (c, a)
+    run.ticks(15, "B", moving=True)
+    assert (c, a) not in g and (c, b) in g and not g.inferred((c, b))
+    assert g.inferred((b, c))                # the new move's own way back
+    # A -> B made for real: the guess (heading pi) is replaced by the robot's measurement
+    run.ticks(15, "A", moving=True)
+    assert g.inferred((a, b))
+    run.ticks(15, "B", moving=True)
+    assert not g.inferred((a, b)) and g.count((a, b)) == 1
+    assert g.action((a, b)).heading == pytest.approx(0.0)
+    off, run = make()                        # off by default
+    for where in "BAC":
+        run.ticks(15, where, moving=True)
+    assert not any(off.graph.inferred(t) for t in off.graph)

@@ -14,7 +14,9 @@ integer state ids (the same key as :mod:`hippo.timing`), with the attributes
 ``count``      how often the transition was taken (``n_wait`` of those as a wait, ``n_delay`` with a
                delay measurement);
 ``strength``   1 when last used, multiplied by the factor of :meth:`TransitionGraph.decay`;
-``last_used``  time of the last use, if the caller gives times.
+``last_used``  time of the last use, if the caller gives times;
+``inferred``   True for a move never made but inferred (``B→A`` from ``A→B``:
+               :meth:`TransitionGraph.infer_reverse`); the first real ``B→A`` replaces it.
 
 Edges link ``A→B`` to every ``B→C``: the graph is the *line graph* of the state graph, so an edge
 exists exactly when the end state of one transition is the start state of the other. The edge set
@@ -251,14 +253,40 @@ class TransitionGraph:
                 "heading": None, "heading_r": None, "distance": None,
                 "delay": delay, "count": 1, "n_wait": int(act.is_wait),
                 "n_delay": int(delay is not None), "strength": 1.0, "last_used": time,
+                "inferred": False,
             }
             if not act.is_wait:
                 attrs.update(heading=act.heading, heading_r=1.0, distance=act.distance)
             self._insert(t, attrs)
         else:
+            if node.get("inferred"):  # experience replaces the guess (a first real sample)
+                node.update(count=0, n_wait=0, n_delay=0, delay=None, heading=None,
+                            inferred=False)
             self._merge(node, act, delay, time)
             self.version += 1
         return t
+
+    def infer_reverse(self, t: Transition, *, time: float | None = None) -> Transition | None:
+        """Infer the way back of move ``t = A→B``: ``B→A`` with heading ``h + π`` and the same
+        distance, marked ``inferred`` (count 1, no delay), unless ``B→A`` is known (or ``t`` is
+        a wait or a self-loop). Path integration makes the reverse of a move a plausible move:
+        the wall-following robot learns its corridors one way round only, and the reverse
+        edges let the planner see the short way back (the robot confirms it by making it,
+        see :meth:`add_transition`, or forgets it, :meth:`remove_transition`). Returns the
+        inferred transition, or None."""
+        a, b = self._check_transition(t)
+        d = self._g.nodes[(a, b)]
+        if a == b or d["action"] != MOVE or d["heading"] is None or (b, a) in self._g:
+            return None
+        self._insert((b, a), {
+            "a": b, "b": a, "action": MOVE, "heading": wrap_exact(d["heading"] + math.pi),
+            "heading_r": d["heading_r"], "distance": d["distance"], "delay": None, "count": 1,
+            "n_wait": 0, "n_delay": 0, "strength": 1.0, "last_used": time, "inferred": True})
+        return b, a
+
+    def inferred(self, t: Transition) -> bool:
+        """Is ``t`` an inferred move the robot has not made yet?"""
+        return bool(self._g.nodes[self._check_transition(t)].get("inferred", False))
 
     def _merge(self, d: dict[str, Any], act: Action, delay: float | None,
                time: float | None) -> None:

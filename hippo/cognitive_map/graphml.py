@@ -27,7 +27,8 @@ GRAPHML_FORMAT = "hippo.cognitive_map.TransitionGraph/1"
 _FLOAT_ATTRS = ("heading", "heading_r", "distance", "delay", "strength", "last_used")
 _INT_ATTRS = ("a", "b", "count", "n_wait", "n_delay")
 _STR_ATTRS = ("action",)
-NODE_ATTRS = _INT_ATTRS + _STR_ATTRS + _FLOAT_ATTRS
+_BOOL_ATTRS = ("inferred",)  # optional on reading (False when absent)
+NODE_ATTRS = _INT_ATTRS + _STR_ATTRS + _FLOAT_ATTRS + _BOOL_ATTRS
 """Every attribute a transition node carries (``None`` allowed for the float ones but strength)."""
 
 
@@ -58,6 +59,7 @@ def write_graphml(graph: Any, path: str | os.PathLike) -> Path:
         for k in _FLOAT_ATTRS:
             if d[k] is not None:
                 attrs[k] = float(d[k])
+        attrs["inferred"] = bool(d.get("inferred", False))
         h.add_node(node_id(t), **attrs)
     h.add_edges_from((node_id(u), node_id(v)) for u, v in graph._g.edges)
     text = "\n".join(nx.generate_graphml(h)) + "\n"
@@ -191,4 +193,10 @@ def _checked_node(nid: str, d: dict[str, Any]) -> dict[str, Any]:
         raise ValueError(f"delay of {nid!r} must be >= 0, got {at['delay']}")
     if not 0.0 <= at["strength"] <= 1.0:
         raise ValueError(f"strength of {nid!r} must lie in [0, 1], got {at['strength']}")
+    inferred = d.get("inferred", False)
+    if not isinstance(inferred, bool):
+        raise ValueError(f"inferred of {nid!r} must be a boolean, got {inferred!r}")
+    if inferred and (action != MOVE or count != 1 or at["n_delay"] != 0):
+        raise ValueError(f"node {nid!r}: an inferred transition is one move without a delay")
+    at["inferred"] = inferred
     return at

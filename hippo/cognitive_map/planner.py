@@ -39,9 +39,7 @@ graph (Bellman-Ford with a FIFO work list), for tests and the benchmark.
 
 from __future__ import annotations
 
-import math
 from collections import deque
-from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -50,9 +48,11 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
-from hippo._checks import check_fields, check_finite, check_positive, check_range
+from hippo._checks import check_fields, check_positive, check_range
 from hippo.cognitive_map.drives import Drives
 from hippo.cognitive_map.graph import Transition, TransitionGraph, TransitionIndex, as_transition
+from hippo.cognitive_map.inputs import drive_input, effective_levels, inferred_mask
+from hippo.cognitive_map.inputs import input_array as _input_array
 
 Method = Literal["states", "transitions"]
 _K = 1.0  # offset of the super-source edges (keeps them strictly positive)
@@ -72,6 +72,9 @@ class PlannerParams:
     replan_tolerance:      reuse the last propagation while no drive level moved by more than this
                            (and neither the map structure nor the goal links changed).
     method:                ``"states"`` or ``"transitions"`` (see the module docstring).
+    inferred_weight:       an inferred move (:meth:`TransitionGraph.infer_reverse`, never made)
+                           passes on ``w · inferred_weight`` instead of ``w``: the planner takes
+                           a way back it only inferred when it saves enough known steps.
     """
 
     w: float = 0.9
@@ -79,6 +82,7 @@ class PlannerParams:
     exploration_threshold: float = 0.05
     replan_tolerance: float = 1e-3
     method: Method = "states"
+    inferred_weight: float = 0.8
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -87,6 +91,8 @@ class PlannerParams:
         check_range("PlannerParams.exploration_threshold", self.exploration_threshold, 0.0, 1.0)
         check_positive("PlannerParams.replan_tolerance", self.replan_tolerance, allow_zero=True)
         _check_method(self.method)
+        check_range("PlannerParams.inferred_weight", self.inferred_weight, 0.0, 1.0,
+                    closed="right")
 
 
 def _check_w(w: float) -> float:
@@ -131,50 +137,6 @@ class Activity:
         return bool(self.inputs[i] > 0 and self.inputs[i] >= self.values[i] * (1 - rtol))
 
 
-# --------------------------------------------------------------------------- drive input
-def effective_levels(drives: Drives, threshold: float = 0.0) -> dict[str, float]:
-    """Drive levels, with those below ``threshold`` set to 0 (inactive)."""
-    return {n: (v if v >= threshold and v > 0 else 0.0) for n, v in drives.levels.items()}
-
-
-def drive_input(graph: TransitionGraph, drives: Drives, threshold: float = 0.0) -> np.ndarray:
-    """``I(n) = max_d level(d) · W_{d,n}`` for every transition of ``graph`` (index order).
-
-    Drives below ``threshold`` give no input; links to transitions not in the graph are ignored.
-    """
-    idx = graph.index()
-    inputs = np.zeros(len(idx))
-    for name, level in effective_levels(drives, threshold).items():
-        if level <= 0:
-            continue
-        for t, w in drives.links(name).items():
-            i = idx.pos.get(t)
-            if i is not None and level * w > inputs[i]:
-                inputs[i] = level * w
-    return inputs
-
-
-def _input_array(graph: TransitionGraph, inputs: Any) -> np.ndarray:
-    idx = graph.index()
-    if isinstance(inputs, Drives):
-        return drive_input(graph, inputs)
-    if isinstance(inputs, Mapping):
-        arr = np.zeros(len(idx))
-        for t, v in inputs.items():
-            key = as_transition(t)
-            if key not in idx.pos:
-                raise KeyError(f"drive input given for unknown transition {key[0]}->{key[1]}")
-            arr[idx.pos[key]] = v
-    else:
-        arr = np.asarray(inputs, dtype=float)
-        if arr.shape != (len(idx),):
-            raise ValueError(f"drive inputs must have shape ({len(idx)},), got {arr.shape}")
-    check_finite("drive inputs", arr)
-    if arr.size and (arr.min() < 0 or arr.max() > 1):
-        raise ValueError(f"drive inputs must lie in [0, 1], got range [{arr.min()}, {arr.max()}]")
-    return arr
-
-
 # --------------------------------------------------------------------------- sparse structure
 def _csr_pattern(rows: np.ndarray, cols: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
     """(indptr, indices) of an n×n pattern with entries (rows[k], cols[k]) (no duplicates)."""
@@ -192,6 +154,14 @@ def state_pattern(graph: TransitionGraph) -> tuple[np.ndarray, np.ndarray]:
         idx = graph.index()
         return _csr_pattern(idx.b_s, idx.a_s, len(idx.states))
     return graph.cached("planner.state_pattern", build)
+
+
+def _state_order(graph: TransitionGraph) -> np.ndarray:
+    """The transition behind each entry of :func:`state_pattern` (its storage order)."""
+    def build() -> np.ndarray:
+        idx = graph.index()
+        return np.lexsort((idx.a_s, idx.b_s))
+    return graph.cached("planner.state_order", build)
 
 
 def transition_pattern(graph: TransitionGraph) -> tuple[np.ndarray, np.ndarray]:
@@ -217,8 +187,9 @@ def prepare(graph: TransitionGraph, method: Method = "states") -> None:
         transition_pattern(graph)
 
 
-def _dijkstra_from_goals(indptr: np.ndarray, indices: np.ndarray, n: int, edge_cost: float,
-                         goal_nodes: np.ndarray, goal_costs: np.ndarray) -> np.ndarray:
+def _dijkstra_from_goals(indptr: np.ndarray, indices: np.ndarray, n: int,
+                         edge_cost: float | np.ndarray, goal_nodes: np.ndarray,
+                         goal_costs: np.ndarray) -> np.ndarray:
     """Shortest cost to every node from a super-source with edges ``goal → K + cost``."""
     # One start cost per goal node: the smallest.
     order = np.lexsort((goal_costs, goal_nodes))
@@ -239,44 +210,53 @@ def _dijkstra_from_goals(indptr: np.ndarray, indices: np.ndarray, n: int, edge_c
 
 
 def propagate(graph: TransitionGraph, inputs: Any, w: float = 0.9, *,
-              method: Method = "states") -> Activity:
-    """Fixed point of ``act(n) = max(I(n), w · max_{s ∈ succ(n)} act(s))`` over ``graph``.
+              method: Method = "states", inferred_weight: float = 1.0) -> Activity:
+    """Fixed point of ``act(n) = max(I(n), w_n · max_{s ∈ succ(n)} act(s))`` over ``graph``.
 
-    ``inputs`` is a :class:`Drives` (all levels count), a mapping transition → input, or an
-    array aligned with ``graph.index().nodes``; inputs lie in [0, 1]. Runs one multi-source
-    Dijkstra on ``−log`` activities (see the module docstring); ``O(E log V)``.
+    ``w_n = w``, times ``inferred_weight`` for an inferred move ``n``. ``inputs`` is a
+    :class:`Drives` (all levels count), a mapping transition → input, or an array aligned with
+    ``graph.index().nodes``; inputs lie in [0, 1]. Runs one multi-source Dijkstra on ``−log``
+    activities (see the module docstring); ``O(E log V)``.
     """
     w = _check_w(w)
     _check_method(method)
+    f = check_range("inferred_weight", inferred_weight, 0.0, 1.0, closed="right")
     idx = graph.index()
     inp = _input_array(graph, inputs)
     goals = np.flatnonzero(inp > 0)
     if len(goals) == 0:
         zeros = np.zeros(len(idx))
         return Activity(idx, zeros, inp, np.zeros(len(idx.states)) if method == "states" else None)
-    edge_cost = -math.log(w)
+    wn = np.full(len(idx), w)
+    if f < 1.0:
+        wn[inferred_mask(graph)] *= f
+    edge_cost = -np.log(wn)  # per transition
     goal_costs = -np.log(inp[goals])
     if method == "states":
         indptr, indices = state_pattern(graph)
         ns = len(idx.states)
-        cost = _dijkstra_from_goals(indptr, indices, ns, edge_cost, idx.a_s[goals], goal_costs)
+        cost = _dijkstra_from_goals(indptr, indices, ns, edge_cost[_state_order(graph)],
+                                    idx.a_s[goals], goal_costs)
         v = np.exp(-cost)  # inf -> 0
-        values = np.maximum(inp, w * v[idx.b_s])
+        values = np.maximum(inp, wn * v[idx.b_s])
         return Activity(idx, values, inp, v)
     indptr, indices = transition_pattern(graph)
-    cost = _dijkstra_from_goals(indptr, indices, len(idx), edge_cost, goals, goal_costs)
+    # the edge j -> i of the reversed transition graph offers act(j) to i at i's weight
+    cost = _dijkstra_from_goals(indptr, indices, len(idx), edge_cost[indices], goals,
+                                goal_costs)
     values = np.minimum(np.exp(-cost), 1.0)
     values[goals] = np.maximum(values[goals], inp[goals])
     return Activity(idx, values, inp)
 
 
-def propagate_reference(graph: TransitionGraph | nx.DiGraph, inputs: Any,
-                        w: float = 0.9) -> dict[Transition, float]:
+def propagate_reference(graph: TransitionGraph | nx.DiGraph, inputs: Any, w: float = 0.9,
+                        inferred_weight: float = 1.0) -> dict[Transition, float]:
     """Pure-Python reference of the same sweep on the networkx graph (Bellman-Ford, FIFO list).
 
     Starts from ``act = I`` and, whenever ``act(s)`` grows, offers ``w · act(s)`` to every
-    predecessor of ``s`` until nothing changes. ``inputs``: a :class:`Drives` (with a
-    :class:`TransitionGraph`) or a mapping transition → input. Returns transition → activity.
+    predecessor of ``s`` (``w · inferred_weight`` to an inferred one) until nothing changes.
+    ``inputs``: a :class:`Drives` (with a :class:`TransitionGraph`) or a mapping transition →
+    input. Returns transition → activity.
     """
     w = _check_w(w)
     if isinstance(graph, TransitionGraph):
@@ -302,8 +282,8 @@ def propagate_reference(graph: TransitionGraph | nx.DiGraph, inputs: Any,
     while queue:
         s = queue.popleft()
         queued.discard(s)
-        offer = w * act[s]
         for p in pred[s]:
+            offer = w * act[s] * (inferred_weight if g.nodes[p].get("inferred") else 1.0)
             if offer > act[p]:
                 act[p] = offer
                 if p not in queued:
@@ -347,14 +327,16 @@ class Planner:
         levels = effective_levels(drives, p.exploration_threshold)
         # the same map and drives objects (by identity, not by id(): a restored snapshot
         # keeps its cache), unchanged in structure and goal links
-        key = (graph.structure_version, drives.links_version)
+        n_inferred = int(inferred_mask(graph).sum()) if p.inferred_weight < 1.0 else 0
+        key = (graph.structure_version, drives.links_version, n_inferred)
         same = self._refs is not None and self._refs[0] is graph and self._refs[1] is drives
         if (not force and self._activity is not None and same and key == self._key
                 and self._levels is not None and self._levels.keys() == levels.keys()
                 and all(abs(levels[n] - v) <= p.replan_tolerance for n, v in self._levels.items())):
             return self._activity
         inp = drive_input(graph, drives, p.exploration_threshold)
-        self._activity = propagate(graph, inp, p.w, method=p.method)
+        self._activity = propagate(graph, inp, p.w, method=p.method,
+                                   inferred_weight=p.inferred_weight)
         self._key, self._levels = key, levels
         self._refs = (graph, drives)
         self.n_propagations += 1

@@ -106,7 +106,7 @@ def test_path_length_starts_where_the_robot_was_put():
 def test_a_kidnap_keeps_the_heading_estimate_exact_even_mid_turn():
     # the robot is lifted while turning: the last observation's rotation, which the agent has
     # not integrated yet, must count (it was lost before: up to 0.5 rad per lift)
-    world, agent, s = _session()
+    _, agent, s = _session()
     s.run(seconds=2.0)
     s.run(400, until=lambda o: abs(o.odometry[2]) > 0.05)
     assert abs(s.obs.odometry[2]) > 0.05
