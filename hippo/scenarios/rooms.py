@@ -11,9 +11,9 @@ first 3/4 without labels. Analysis
 * ``room_cell_balanced_accuracy`` — for each room, the unit, threshold and sign that best
   detect "in this room" (vs the other rooms; corridors left out), scored on the test part;
 * ``decoder_balanced_accuracy`` — a decoder over rooms reading all the units: the room whose
-  mean unit vector on the training part (its centroid) is nearest (mean recall over rooms;
-  chance 1/n). Only the n centroids are learned from labels; units that code the position
-  along the flat, not one room each, are read too;
+  mean unit vector on the training part (its centroid) is nearest (mean recall over the rooms
+  the test part visits, NaN if it stays in one; chance 1/n). Only the n centroids are learned
+  from labels; units that code the position along the flat, not one room each, are read too;
 * ``ceiling`` — what a supervised ridge read-out of the same reservoir state reaches (blocked
   cross-validation in time over the whole recording; per room one-vs-rest, and over rooms);
 * ``kidnap_recovery_ticks`` — a second, unseen test run continues from the end of training;
@@ -193,7 +193,9 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
         "room_cell_balanced_accuracy": bacc,
         "room_cell_units": [c.unit for c in cells],
         "room_cell_mean": float(np.nanmean(bacc)),
-        "decoder_balanced_accuracy": float(np.nanmean(recall)),
+        # a test part inside one room has no balanced accuracy (recall of one room alone)
+        "decoder_balanced_accuracy": (float(np.nanmean(recall))
+                                      if np.isfinite(recall).sum() >= 2 else float("nan")),
     }
     if args.ceiling:
         ceil = M.ridge_ceiling(model.features(rec.sensors), np.where(in_room, lab, 0), n,
