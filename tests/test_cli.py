@@ -108,6 +108,8 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["run", "rooms", "--n-rooms", "1"], "--n-rooms"),
     (["run", "rooms", "--ticks-per-room", "10"], "--ticks-per-room"),
     (["run", "rooms", "--sfa-cutoff", "2"], "--sfa-cutoff"),
+    (["run", "rooms", "--units", "many"], "--units"),
+    (["run", "rooms", "--units", "-1"], "--units"),
     (["run", "rooms", "--cache", A_FILE], "--cache"),
     (["run", "two-rooms", "--seeds", "x-y"], "--seeds"),
     # sweep

@@ -12,6 +12,8 @@
 * :class:`ContextStates` — places split by the way the robot came in, and merged when they take
   turns (online, USM-style; CSCG's clones), usable alone or inside the state layer.
 * :mod:`hippo.perception.metrics` — place fields, localization, decoding, recovery time.
+* :mod:`hippo.perception.unit_count` — how many SFA/ICA units a world needs, read from the
+  SFA slowness spectrum without labels.
 """
 
 from hippo.perception.contexts import ContextParams, ContextStates

@@ -23,6 +23,16 @@ def test_rooms_quick(tmp_path):
     assert flat["kidnap_events"] >= 1 and m["kidnap_unrecovered"] == 0
 
 
+def test_rooms_units_auto(tmp_path):
+    # the unit count read from the slowness spectrum: two units per region, 2-8 regions
+    m = run_scenario("rooms", ["--quick", "--units", "auto", "--no-ceiling", "--no-figures",
+                               "--out", str(tmp_path / "auto")])
+    flat = m["flats"][0]
+    assert 2 <= flat["regions_from_spectrum"] <= 8
+    assert m["units"] == [flat["units"]] == [2 * flat["regions_from_spectrum"]]
+    assert 0.5 <= m["room_cell_mean"] <= 1.0
+
+
 def test_rooms_arguments():
     with pytest.raises(SystemExit):
         run_scenario("rooms", ["--quick", "--n-rooms", "1"])
