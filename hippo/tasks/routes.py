@@ -55,14 +55,16 @@ class Route:
                 clearance: float = 3.0) -> Route:
         """The closed route through ``points`` in order: the arena's shortest path (for a disc
         of ``radius`` cm, keeping ``clearance`` cm more from walls where it can) from each point
-        to the next and from the last back to the first. Where two points are joined by one
-        corridor only, the route runs along it both ways."""
+        to the next and from the last back to the first. Each leg keeps off the legs before it
+        where another way exists (cells within 10 cm of them cost 3 times as much): around a
+        ring the route is a loop, not out along one side and back along it. Where two points
+        are joined by one corridor only, the route runs along it both ways."""
         pts = [tuple(map(float, p)) for p in points]
         if len(pts) < 2:
             raise ValueError(f"a route needs at least two points, got {len(pts)}")
         wps: list[tuple[float, float]] = []
         for a, b in pairwise([*pts, pts[0]]):
-            _, path = arena.shortest_path(a, b, radius, clearance=clearance)
+            _, path = arena.shortest_path(a, b, radius, clearance=clearance, avoid=wps)
             if not path:
                 raise ValueError(f"no path from {a} to {b} in arena {arena.name!r}")
             wps.extend([a, *path[1:-1]])
