@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from itertools import pairwise
 
 import numpy as np
+from scipy import ndimage
 
 from hippo._checks import check_finite
 
@@ -171,11 +172,13 @@ class Arena:
         nx, ny = free.shape
         penalty = np.where(roomy, 1.0, 3.0)
         if len(avoid):
+            # the cells within avoid_radius of the path to avoid (its points joined by lines)
             av = np.asarray(avoid, float).reshape(-1, 2)
-            gx, gy = np.meshgrid(xs, ys, indexing="ij")
-            near = np.zeros(free.shape, bool)
-            for ax_, ay_ in av:
-                near |= np.hypot(gx - ax_, gy - ay_) < avoid_radius
+            seg = np.linspace(av[:-1], av[1:], 8, axis=0).reshape(-1, 2) if len(av) > 1 else av
+            on = np.ones(free.shape, bool)
+            on[np.clip(np.round((seg[:, 0] - xs[0]) / cell).astype(int), 0, nx - 1),
+               np.clip(np.round((seg[:, 1] - ys[0]) / cell).astype(int), 0, ny - 1)] = False
+            near = ndimage.distance_transform_edt(on) * cell < avoid_radius
             penalty = penalty * np.where(near, 3.0, 1.0)
 
         def idx(p: Point) -> tuple[int, int]:
