@@ -244,10 +244,9 @@ class PatrolCourse:
         with Progress(1, "leash") as bar:
             s.run(6000, until=lambda o: not s.teacher.leading)
             bar.update()
-        # reproduction: no drive is active (all are held at 0: an active drive that leads
-        # nowhere yet would make the robot explore), the only known way on is the taught loop
-        for n in self.names:
-            agent.drives.inhibit(n)
+        # reproduction: no drive leads anywhere yet (an active one makes the robot explore:
+        # on patrol-course the exploring wall follower runs the loop)
+        agent.drives.step(0.0)
         s.phase, start_turns = PatrolPhase.REPRODUCTION, self.laps()
         with Progress(1, "reproduction") as bar:
             s.run(int(max(400.0, 3.0 * self.route.length / 5.0) / dt),
@@ -258,9 +257,8 @@ class PatrolCourse:
         # first one once more at the end, so that every taught stop follows another and the
         # robot knows its run-up from the wait before (BrainParams.runup_tolerance)
         # (the drive of the checkpoint ahead is held meanwhile: the teacher, not the robot,
-        # chooses that stop; so is every drive not yet taught: it leads nowhere, and an active
-        # drive that leads nowhere makes the robot explore off the loop. The taught ones lead
-        # the robot on along the loop.) A robot that has not come to the checkpoint in twice
+        # chooses that stop; the others lead the robot on along the loop.) A robot that has
+        # not come to the checkpoint in twice
         # the time the route takes at 5 cm/s (and 60 s) is led there on the leash along the
         # route: a lesson is not spent on a robot that went astray.
         s.phase = PatrolPhase.CHECKPOINTS
