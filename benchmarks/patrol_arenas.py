@@ -53,22 +53,22 @@ def table(folder: Path) -> None:
     for f in sorted(folder.glob("*/metrics.json")):
         m = json.loads(f.read_text())
         rows.setdefault((m["arena"], m["place_cells"]), []).append(m)
-    print("| arena | place cells | seeds | passes with a stop | waits within 3 % | "
-          "loops reproduced | patrol loops |")
-    print("|---|---|---|---|---|---|---|")
+    print("| arena | place cells | seeds | passes with a stop | extra / misplaced stops | "
+          "waits within 3 % | loops reproduced | runs with every patrol loop done |")
+    print("|---|---|---|---|---|---|---|---|")
     for (arena, pc), ms in sorted(rows.items()):
         made = sum(m["checkpoint_stops_made"] for m in ms)
         exp = sum(m["checkpoint_stops_expected"] for m in ms)
-        errs = [e for m in ms for r in m["checkpoints"] if r["learned_wait_s"]
-                for e in [abs(w - r["learned_wait_s"]) / r["learned_wait_s"]
-                          for w in r["reproduced_waits_s"]]]
+        extra = sum(m["extra_stops"] for m in ms)
+        mis = sum(m["misplaced_stops"] for m in ms)
+        errs = [abs(w - r["learned_wait_s"]) / r["learned_wait_s"] for m in ms
+                for r in m["checkpoints"] if r["learned_wait_s"] for w in r["reproduced_waits_s"]]
         ok = sum(e <= 0.03 for e in errs)
         rep = sum(m["reproduced_loop_fraction"] >= 0.9 for m in ms)
-        laps = sum(m["loops_completed"] for m in ms)
-        want = sum(m["loops"] for m in ms)
+        done = sum(m["loop_completion"] >= 1.0 for m in ms)
         seeds = ",".join(str(m["seed"]) for m in ms)
-        print(f"| {arena} | {pc} | {seeds} | {made}/{exp} | {ok}/{len(errs)} | "
-              f"{rep}/{len(ms)} | {laps:.1f}/{want} |")
+        print(f"| {arena} | {pc} | {seeds} | {made}/{exp} | {extra} / {mis} | {ok}/{len(errs)} "
+              f"| {rep}/{len(ms)} | {done}/{len(ms)} |")
 
 
 if __name__ == "__main__":
