@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from itertools import pairwise
 
 import numpy as np
+from scipy import ndimage
 
 from hippo._checks import check_finite
 
@@ -154,18 +155,31 @@ class Arena:
         return xs, ys, free.reshape(gx.shape)
 
     def shortest_path(self, start: Point, goal: Rect | Point, radius: float = 3.7,
-                      cell: float = 2.0, clearance: float = 3.0, *, thin: bool = True
+                      cell: float = 2.0, clearance: float = 3.0, *, thin: bool = True,
+                      avoid: Sequence[Point] = (), avoid_radius: float = 10.0
                       ) -> tuple[float, list[Point]]:
         """Shortest collision-free path from ``start`` to a point or rectangle.
 
         Dijkstra on an 8-connected grid of cells where a disc of ``radius + clearance`` fits
         (cells where only ``radius`` fits are allowed at a cost penalty, so paths keep off walls
-        when they can). Returns (length in cm of the grid path, waypoints: every third grid
-        cell, or every cell with ``thin=False``); (inf, []) if unreachable.
+        when they can; so are cells within ``avoid_radius`` cm of a point of ``avoid``, e.g. a
+        path already taken, so that a loop does not run back along it where another way
+        exists). Returns (length in cm of the grid path, waypoints: every third grid cell, or
+        every cell with ``thin=False``); (inf, []) if unreachable.
         """
         xs, ys, free = self.free_grid(radius, cell)
         _, _, roomy = self.free_grid(radius + clearance, cell)
         nx, ny = free.shape
+        penalty = np.where(roomy, 1.0, 3.0)
+        if len(avoid):
+            # the cells within avoid_radius of the path to avoid (its points joined by lines)
+            av = np.asarray(avoid, float).reshape(-1, 2)
+            seg = np.linspace(av[:-1], av[1:], 8, axis=0).reshape(-1, 2) if len(av) > 1 else av
+            on = np.ones(free.shape, bool)
+            on[np.clip(np.round((seg[:, 0] - xs[0]) / cell).astype(int), 0, nx - 1),
+               np.clip(np.round((seg[:, 1] - ys[0]) / cell).astype(int), 0, ny - 1)] = False
+            near = ndimage.distance_transform_edt(on) * cell < avoid_radius
+            penalty = penalty * np.where(near, 3.0, 1.0)
 
         def idx(p: Point) -> tuple[int, int]:
             return int(np.argmin(np.abs(xs - p[0]))), int(np.argmin(np.abs(ys - p[1])))
@@ -196,7 +210,7 @@ class Arena:
             for dx, dy, c in steps:
                 a, b = i + dx, j + dy
                 if 0 <= a < nx and 0 <= b < ny and free[a, b]:
-                    cost = c if roomy[a, b] else 3 * c
+                    cost = c * penalty[a, b]
                     if d + cost < dist[a, b]:
                         dist[a, b] = d + cost
                         length[a, b] = length[i, j] + c

@@ -11,8 +11,9 @@
   :func:`route_passes`, :func:`passes`, :func:`stops` (``routes.py``) — routes through an
   arena's checkpoints, progress along them, laps, checkpoint passes and stops.
 - :class:`PatrolCourse`, :class:`PatrolPhase`, :func:`patrol_route`, :func:`check_patrol`,
-  :func:`pass_report`, ``ARENA_CHECKPOINTS``, ``HIREL_WAITS`` (``patrol.py``) — a timed patrol
-  on any arena: its lesson, its laps and what each pass by a checkpoint gave.
+  :func:`pass_report`, :func:`random_patrol`, ``ARENA_CHECKPOINTS``, ``HIREL_WAITS``
+  (``patrol.py``) — a timed patrol on any arena: its lesson, its laps, what each pass by a
+  checkpoint gave, and checkpoint sets nobody chose (for held-out tests).
 - :class:`Log`, :func:`event_arrays`, :func:`enum_names` (``log.py``) — the per-tick log and
   its files.
 
@@ -29,6 +30,7 @@ from hippo.tasks.patrol import (
     check_patrol,
     pass_report,
     patrol_route,
+    random_patrol,
 )
 from hippo.tasks.routes import (
     AngleLaps,
@@ -46,6 +48,6 @@ __all__ = [
     "ARENA_CHECKPOINTS", "HIREL_WAITS", "PAUSE_RATE", "PLACE_STATES", "AngleLaps",
     "Experimenter", "LapCounter", "Log", "PatrolCourse", "PatrolPhase", "Route", "Session",
     "Tour", "check_patrol", "enum_names", "event_arrays", "explore", "learn_map",
-    "make_places", "pass_report", "passes", "patrol_route", "progress_along", "route_passes",
-    "stops",
+    "make_places", "pass_report", "passes", "patrol_route", "progress_along", "random_patrol",
+    "route_passes", "stops",
 ]

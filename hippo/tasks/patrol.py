@@ -23,6 +23,7 @@ from enum import IntEnum
 from typing import Any
 
 import numpy as np
+from scipy import ndimage
 
 from hippo.progress import Progress
 from hippo.sim import arenas
@@ -31,7 +32,7 @@ from hippo.tasks.session import Session
 from hippo.types import Mode, StateKind
 
 __all__ = ["ARENA_CHECKPOINTS", "HIREL_WAITS", "PatrolCourse", "PatrolPhase", "check_patrol",
-           "pass_report", "patrol_route"]
+           "pass_report", "patrol_route", "random_patrol"]
 
 #: the arenas a patrol runs in, with their default checkpoints (cm): patrol-course's are its
 #: landmarks checkpoint-1..3 on the corridor loop; the others' were placed in distinct parts
@@ -73,18 +74,26 @@ def patrol_route(arena_name: str, checkpoints: Sequence[Sequence[float]]) -> Rou
 def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
                  waits: Sequence[float]) -> Route:
     """Raise ``ValueError`` naming the problem unless the checkpoints lie on free floor of the
-    arena (6 cm clear of every wall), are reachable from each other and are at least
+    arena (6 cm clear of every wall) that the robot can reach from the arena's start, are
+    reachable from each other and are at least
     ``2 * PASS_RADIUS`` + 10 cm apart along the route, with one wait per checkpoint; returns
     the route."""
     arena = arenas.get(arena_name)
     if len(waits) != len(checkpoints):
         raise ValueError(f"got {len(waits)} waits for {len(checkpoints)} checkpoints; give "
                          "one wait per checkpoint")
+    xs, ys, free = arena.free_grid(3.7)
+    parts, _ = ndimage.label(free)
+    home = parts[np.argmin(np.abs(xs - arena.start_pose[0])),
+                 np.argmin(np.abs(ys - arena.start_pose[1]))]
     for x, y in checkpoints:
         if not arena.is_free(x, y, 6.0):
             raise ValueError(f"checkpoint ({x:g}, {y:g}) is not free floor of arena "
                              f"{arena_name!r} ({arena.width:g} x {arena.height:g} cm; a "
                              "checkpoint needs 6 cm clear of every wall)")
+        if parts[np.argmin(np.abs(xs - x)), np.argmin(np.abs(ys - y))] != home:
+            raise ValueError(f"checkpoint ({x:g}, {y:g}) cannot be reached from the start of "
+                             f"arena {arena_name!r} (it lies inside walls)")
     route = patrol_route(arena_name, checkpoints)
     s = sorted(route.progress(x, y) for x, y in checkpoints)
     gaps = np.diff([*s, s[0] + route.length])
@@ -92,6 +101,41 @@ def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
         raise ValueError(f"two checkpoints are {gaps.min():.0f} cm apart along the route; "
                          f"they need 40 cm (a pass is {PASS_RADIUS:g} cm either side)")
     return route
+
+
+def random_patrol(arena_name: str, n: int, seed: int, *, waits: tuple[float, float] = (8.0, 30.0),
+                  clearance: float = 10.0, tries: int = 200
+                  ) -> tuple[list[tuple[float, float]], list[float]]:
+    """``n`` checkpoints and their waits nobody chose: points drawn at random (generator
+    ``seed``) on the floor the robot can reach (``clearance`` cm from every wall, on a 2 cm
+    grid), at least 40 cm apart, until a set passes :func:`check_patrol` (40 cm apart along
+    its route); waits drawn uniformly from ``waits`` (s, to 0.1 s). For held-out tests of a
+    patrol in any arena."""
+    if not 2 <= n <= 4:
+        raise ValueError(f"n must be 2 to 4 checkpoints, got {n!r}")
+    arena = arenas.get(arena_name)
+    rng = np.random.default_rng(seed)
+    xs, ys, free = arena.free_grid(3.7)
+    parts, _ = ndimage.label(free)
+    home = parts[np.argmin(np.abs(xs - arena.start_pose[0])),
+                 np.argmin(np.abs(ys - arena.start_pose[1]))]
+    _, _, roomy = arena.free_grid(clearance)
+    i, j = np.nonzero(roomy & (parts == home))
+    floor = np.column_stack([xs[i], ys[j]])
+    for _ in range(tries):
+        pick = floor[rng.choice(len(floor), size=n, replace=False)]
+        w = [float(np.round(v, 1)) for v in rng.uniform(*waits, size=n)]
+        gaps = np.hypot(*(pick[:, None] - pick[None]).transpose(2, 0, 1))
+        if gaps[np.triu_indices(n, 1)].min() < 40.0:
+            continue
+        cps = [(float(x), float(y)) for x, y in pick]
+        try:
+            check_patrol(arena_name, cps, w)
+        except ValueError:
+            continue
+        return cps, w
+    raise ValueError(f"no {n} checkpoints 40 cm apart along a route found in arena "
+                     f"{arena_name!r} after {tries} tries")
 
 
 def pass_report(arrays: dict, route: Route, checkpoints: Sequence[Sequence[float]],
@@ -200,7 +244,8 @@ class PatrolCourse:
         with Progress(1, "leash") as bar:
             s.run(6000, until=lambda o: not s.teacher.leading)
             bar.update()
-        # reproduction: no drive is active, the only known way on is the taught loop
+        # reproduction: no drive leads anywhere yet (an active one makes the robot explore:
+        # on patrol-course the exploring wall follower runs the loop)
         agent.drives.step(0.0)
         s.phase, start_turns = PatrolPhase.REPRODUCTION, self.laps()
         with Progress(1, "reproduction") as bar:
@@ -212,7 +257,10 @@ class PatrolCourse:
         # first one once more at the end, so that every taught stop follows another and the
         # robot knows its run-up from the wait before (BrainParams.runup_tolerance)
         # (the drive of the checkpoint ahead is held meanwhile: the teacher, not the robot,
-        # chooses that stop; the others lead the robot on along the loop)
+        # chooses that stop; the others lead the robot on along the loop.) A robot that has
+        # not come to the checkpoint in twice
+        # the time the route takes at 5 cm/s (and 60 s) is led there on the leash along the
+        # route: a lesson is not spent on a robot that went astray.
         s.phase = PatrolPhase.CHECKPOINTS
         order = [*range(len(self.checkpoints)), 0]
         with Progress(len(order), "checkpoints") as bar:
@@ -220,7 +268,12 @@ class PatrolCourse:
                 c = self.checkpoints[k]
                 s.trial = k
                 agent.drives.inhibit(self.names[k])
-                s.run(int(300 / dt), until=lambda o, c=c: self.near(c, 12.0))
+                self.laps()
+                ahead = (self.route.progress(*c) - self.loop.progress) % self.route.length  # type: ignore[operator]
+                s.run(int((60.0 + 2.0 * ahead / 5.0) / dt),
+                      until=lambda o, c=c: self.near(c, 12.0))
+                if not self.near(c, 12.0):
+                    s.lead(self.route.leg(s.truth.pose, c))
                 s.block(waits[k])
                 agent.reward(self.names[k])
                 s.run(int(10 / dt),
