@@ -32,11 +32,12 @@ __all__ = ["CANDIDATES", "CRITERIA", "DEFAULT_CRITERION", "select_setting", "sel
 
 
 def select_setting(U: np.ndarray, n_train: int, base: RCSFAICAParams,
-                   labelled: Callable[[np.ndarray], float], criterion: str = DEFAULT_CRITERION
-                   ) -> dict[str, Any]:
+                   labelled: Callable[[np.ndarray], float], criterion: str = DEFAULT_CRITERION,
+                   paper: tuple[float, float] = (0.05, 0.15)) -> dict[str, Any]:
     """Choose a leak pair for the recording ``U`` from its first ``n_train`` ticks alone; then
     (analysis) score every candidate fitted on those ticks with ``labelled(Y)``, ``Y`` the
-    candidate's outputs over all of ``U``."""
+    candidate's outputs over all of ``U`` (``paper``'s score is kept beside the chosen one's:
+    both fitted the same way)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ICAConvergenceWarning)
         sel = select_leak(U, CANDIDATES, base, criterion=criterion, n_rows=n_train)
@@ -48,14 +49,19 @@ def select_setting(U: np.ndarray, n_train: int, base: RCSFAICAParams,
             "scores": sel.scores.tolist(), "labelled_accuracy": acc,
             "spearman": rank_correlation(sel.scores, acc),
             "chosen_accuracy_in_sweep": acc[sel.best],
+            "paper_accuracy_in_sweep": acc[CANDIDATES.index(tuple(paper))],
             "best_by_labels": list(CANDIDATES[i]), "best_accuracy_in_sweep": acc[i]}
 
 
-def selection_summary(rows: list[dict[str, Any]], seeds: list[int], picked: list[float],
-                      paper: list[float]) -> dict[str, Any]:
-    """Rank correlation over seeds and the picked setting's labelled accuracy (from the
-    scenario's own fit) next to the fixed paper setting's, overall and per group of
-    ``GROUP`` seeds."""
+def selection_summary(rows: list[dict[str, Any]], seeds: list[int],
+                      picked: list[float] | None = None, paper: list[float] | None = None
+                      ) -> dict[str, Any]:
+    """Rank correlation over seeds and the picked setting's labelled accuracy next to the
+    fixed paper setting's, overall and per group of ``GROUP`` seeds: from the scenario's own
+    fits when given, else from the candidates' fits (``*_accuracy_in_sweep``)."""
+    if picked is None or paper is None:
+        picked = [r["chosen_accuracy_in_sweep"] for r in rows]
+        paper = [r["paper_accuracy_in_sweep"] for r in rows]
     rho = [r["spearman"] for r in rows]
     diff = np.asarray(picked, float) - np.asarray(paper, float)
     groups = []

@@ -48,6 +48,12 @@ from hippo.scenarios._common import (
     sfa_cutoff,
     write_metrics,
 )
+from hippo.scenarios._selection import (
+    CRITERIA,
+    DEFAULT_CRITERION,
+    select_setting,
+    selection_summary,
+)
 from hippo.sim.flats import random_flat, room_names
 from hippo.sim.record import Recording, record
 
@@ -79,6 +85,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="recovered = right for this many consecutive ticks")
     parser.add_argument("--ceiling", action=argparse.BooleanOptionalAction, default=True,
                         help="also report the supervised ceiling")
+    parser.add_argument("--select", action=argparse.BooleanOptionalAction, default=False,
+                        help="choose the leak pair per flat from the recording alone (label-"
+                             "free criterion over 16 pairs) instead of --leak; report it")
+    parser.add_argument("--select-criterion", choices=CRITERIA, default=DEFAULT_CRITERION,
+                        help="label-free criterion of --select")
     parser.add_argument("--figures", action=argparse.BooleanOptionalAction, default=True,
                         help="write PNGs")
 
@@ -138,6 +149,19 @@ def _nearest_centroid(Y: np.ndarray, centroids: np.ndarray) -> np.ndarray:
     return np.argmin(d, axis=1)
 
 
+def _room_cells(Y: np.ndarray, lab: np.ndarray, n_train: int, n: int
+                ) -> tuple[list[M.BinaryCell], float, list[float]]:
+    """Per room, the unit, threshold and sign chosen on the training part; their mean and
+    per-room balanced accuracy on the test part (corridors left out)."""
+    tr, te = slice(0, n_train), slice(n_train, len(Y))
+    in_room = lab >= 0
+    cells = [M.fit_binary_cell(Y[tr], lab[tr] == r, in_room[tr]) for r in range(n)]
+    m = in_room[te]
+    bacc = [M.balanced_accuracy(c.predict(Y[te])[m], (lab[te] == r)[m])
+            for r, c in enumerate(cells)]
+    return cells, float(np.nanmean(bacc)), bacc
+
+
 def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any]:
     n = args.n_rooms
     arena = random_flat(n, seed)
@@ -156,17 +180,18 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
     model = RCSFAICA.smc09(n_reservoir=neurons, leak=tuple(args.leak), seed=seed, n_sfa=units,
                            n_ica=units, ica_restarts=min(args.ica_restarts, 3) if quick
                            else args.ica_restarts, sfa_cutoff=sfa_cutoff(args.sfa_cutoff))
+    sel = None
+    if getattr(args, "select", False):
+        sel = select_setting(rec.sensors, n_train, model.params,
+                             lambda Y: _room_cells(Y, lab, n_train, n)[1],
+                             args.select_criterion, paper=tuple(args.leak))
+        model.set_params(leak=tuple(sel["chosen"]))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ICAConvergenceWarning)
         model.fit(rec.sensors[:n_train])
     Y = model.transform(rec.sensors)
     tr, te = slice(0, n_train), slice(n_train, ticks)
-    cells, bacc = [], []
-    for r in range(n):
-        c = M.fit_binary_cell(Y[tr], lab[tr] == r, in_room[tr])
-        cells.append(c)
-        m = in_room[te]
-        bacc.append(M.balanced_accuracy(c.predict(Y[te])[m], (lab[te] == r)[m]))
+    cells, _, bacc = _room_cells(Y, lab, n_train, n)
     cent = np.stack([Y[tr][lab[tr] == r].mean(axis=0) if np.any(lab[tr] == r)
                      else np.full(units, np.inf) for r in range(n)])
     dec = _nearest_centroid(Y, cent)
@@ -175,6 +200,7 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
               else np.nan for r in range(n)]
     out: dict[str, Any] = {
         "seed": seed, "arena": arena.name, "ticks": ticks, "units": units,
+        "leak": list(model.params.leak),
         "room_occupancy": [float(np.mean(lab == r)) for r in range(n)],
         "room_cell_balanced_accuracy": bacc,
         "room_cell_units": [c.unit for c in cells],
@@ -208,6 +234,8 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
                kidnap_recovery_ticks=float(fin.mean()) if fin.size else float("nan"),
                kidnap_recovery_ticks_max=float(fin.max()) if fin.size else float("nan"),
                kidnap_unrecovered=int(np.isnan(rec_t).sum()))
+    if sel is not None:
+        out["selection"] = sel
     return out
 
 
@@ -243,6 +271,9 @@ def run(args: argparse.Namespace) -> dict:
         "flats": rows, "targets": TARGETS,
         "timing_s": {"total": time.perf_counter() - t0},
     }
+    if getattr(args, "select", False):
+        metrics["selection"] = selection_summary([r.pop("selection") for r in rows], seeds)
+        metrics["leak"] = "chosen per flat by --select (see selection.chosen)"
     if args.figures:
         _figure(out, rows, args.n_rooms, seeds)
     write_metrics(out, metrics, summary=(
