@@ -13,7 +13,7 @@ from hippo.perception.backends import _num_threads as _torch_threads
 from hippo.perception.place_cell_params import RCSFAICAParams
 from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.reservoir import Reservoir, expand_leak
-from hippo.perception.sfa import SFAMoments
+from hippo.perception.sfa import SFA, SFAMoments
 
 __all__ = ["SweepFeatures", "fit_leak_sweep", "sweep_features"]
 
@@ -46,6 +46,15 @@ class SweepFeatures:
                 m.update(self.X[b][c:min(c + 4096, t1)])
             self._moments[b, t0, t1] = m
         return self._moments[b, t0, t1]
+
+    def fit_sfa(self, b: int, t0: int = 0, t1: int | None = None,
+                moments: SFAMoments | None = None) -> SFA:
+        """SFA alone (no ICA) of configuration ``b`` fitted on the rows ``t0:t1``."""
+        X = self.X[b][t0:t1]
+        sfa = SFA(self.base.sfa_params())
+        sfa._prepare(X)
+        sfa._fit_moments([moments if moments is not None else self.moments(b, t0, t1)], X)
+        return sfa
 
     def fit(self, b: int, t0: int = 0, t1: int | None = None,
             moments: SFAMoments | None = None) -> RCSFAICA:

@@ -93,14 +93,15 @@ def instability(Ya: np.ndarray, Yb: np.ndarray) -> float:
 @dataclass
 class Selection:
     """Result of :func:`select_leak`: the candidates, their scores (lower is better), the
-    index of the best, and the models fitted on the fitting part."""
+    index of the best, the models fitted on the fitting part (empty for ``"stability"``), the
+    harvested ``features`` and the number of fitting rows (see :meth:`refit`)."""
 
     candidates: list[Any]
     scores: np.ndarray
     best: int
     models: list[RCSFAICA]
     features: SweepFeatures | None = None
-    criterion: str = "slowness"
+    criterion: str = "stability"
     n_fit: int = 0
 
     def refit(self, b: int, n_rows: int) -> RCSFAICA:
@@ -121,7 +122,8 @@ class Selection:
 
 
 def select_leak(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams | None = None, *,
-                criterion: str = "slowness", val_fraction: float = 0.2, n_rows: int | None = None,
+                criterion: str = "stability", val_fraction: float = 0.2,
+                n_rows: int | None = None,
                 **overrides: Any) -> Selection:
     """Harvest ``U`` under every leak configuration over one reservoir
     (:func:`sweep_features`), fit each on the first ``1 - val_fraction`` of the first
@@ -153,7 +155,7 @@ def rank_correlation(criterion: Sequence[float], accuracy: Sequence[float]) -> f
 CRITERIA = ("slowness", "prediction", "stability")
 
 
-def score_sweep(F: SweepFeatures, n_rows: int, criterion: str = "slowness", *,
+def score_sweep(F: SweepFeatures, n_rows: int, criterion: str = "stability", *,
                 val_fraction: float = 0.2, horizon: int = 1,
                 ) -> tuple[np.ndarray, list[RCSFAICA]]:
     """Score every configuration of a harvested sweep ``F`` from its first ``n_rows`` rows
@@ -161,8 +163,9 @@ def score_sweep(F: SweepFeatures, n_rows: int, criterion: str = "slowness", *,
     configuration is fitted on the first ``1 - val_fraction`` of those rows and scored on the
     rest: ``"slowness"`` (:func:`normalised_slowness` of the SFA outputs), ``"prediction"``
     (:func:`prediction_error` of the input ``horizon`` ticks on), or ``"stability"``
-    (:func:`instability` of the ICA units of two fits on the two halves of the fitting
-    rows). Returns the scores (lower is better) and the models fitted on the fitting rows."""
+    (:func:`instability` of the slow features of two SFA fits on the two halves of the
+    fitting rows, matched unit to unit). Returns the scores (lower is better) and the models
+    fitted on the fitting rows (none for ``"stability"``, which needs SFA alone)."""
     if criterion not in CRITERIA:
         raise ValueError(f"criterion must be one of {CRITERIA}, got {criterion!r}")
     if not 0.05 <= val_fraction <= 0.5:
@@ -178,15 +181,16 @@ def score_sweep(F: SweepFeatures, n_rows: int, criterion: str = "slowness", *,
     for b in range(len(F.leaks)):
         h = n_fit // 2
         A, B = F.moments(b, 0, h), F.moments(b, h, n_fit)
+        if criterion == "stability":    # SFA alone: no ICA, no model on all fitting rows
+            Xv = F.X[b][val]
+            scores.append(instability(F.fit_sfa(b, 0, h, A).transform(Xv),
+                                      F.fit_sfa(b, h, n_fit, B).transform(Xv)))
+            continue
         m = F.fit(b, 0, n_fit, A.merged(B))
         Ysfa = m._readout(F.X[b][:n_rows], return_sfa=True)[1]
         if criterion == "slowness":
-            s = float(np.mean(normalised_slowness(Ysfa[val])))
-        elif criterion == "prediction":
-            s = prediction_error(Ysfa, F.X[b][:n_rows, :n_u], n_fit, horizon=horizon)
+            scores.append(float(np.mean(normalised_slowness(Ysfa[val]))))
         else:
-            Ya = F.fit(b, 0, h, A)._readout(F.X[b][val])
-            s = instability(Ya, F.fit(b, h, n_fit, B)._readout(F.X[b][val]))
-        scores.append(s)
+            scores.append(prediction_error(Ysfa, F.X[b][:n_rows, :n_u], n_fit, horizon=horizon))
         models.append(m)
     return np.array(scores), models
