@@ -17,7 +17,8 @@ the two halves of the 80 % for stability):
   1 / 10 ticks later;
 * ``instab_ica`` / ``instab_sfa``: 1 - matched |correlation| of the ICA / SFA outputs of the
   two half-fits on the held-out block;
-* ``kurt_ica``: minus the mean |excess kurtosis| of the ICA outputs on the held-out block.
+* ``kurt_ica``: minus the mean |excess kurtosis| of the ICA outputs on the held-out block;
+* ``slow_stable``: ``slow_sfa`` x ``instab_sfa`` (``--select``'s criterion, "slow-stable").
 
 All are "lower is better"; the Spearman correlation of -criterion with the labelled accuracy
 is computed per seed and averaged.
@@ -51,7 +52,8 @@ from hippo.sim.record import record
 SLOW = (0.03, 0.05, 0.08, 0.11)
 FAST = (0.14, 0.15, 0.2, 0.3)
 LEAKS = [(a, b) for a in SLOW for b in FAST]
-CRITERIA = ("slow_sfa", "slow_ica", "pred1", "pred10", "instab_ica", "instab_sfa", "kurt_ica")
+CRITERIA = ("slow_sfa", "slow_ica", "pred1", "pred10", "instab_ica", "instab_sfa", "kurt_ica",
+            "slow_stable")
 
 
 def _world(world: str, seed: int, cache: str | None, ticks: int | None):
@@ -118,6 +120,7 @@ def one_seed(world: str, seed: int, cache: str | None, ticks: int | None, neuron
         Ib, Sb = hb._readout(X[val], return_sfa=True)
         row["instab_ica"] = instability(Ia, Ib)
         row["instab_sfa"] = instability(Sa, Sb)
+        row["slow_stable"] = row["slow_sfa"] * row["instab_sfa"]
         rows.append(row)
     acc = [r["acc"] for r in rows]
     rho = {c: rank_correlation([r[c] for r in rows], acc) for c in CRITERIA}
@@ -150,6 +153,12 @@ def main(argv: list[str] | None = None) -> None:
         path.write_text(json.dumps(out, indent=1))
         print(f"seed {s} ({r['seconds']:.0f} s): " + ", ".join(
             f"{c} {v:+.2f}" for c, v in r["spearman"].items()), file=sys.stderr, flush=True)
+    for r in out:      # runs written before slow_stable was added
+        if "slow_stable" not in r["spearman"]:
+            for row in r["rows"]:
+                row["slow_stable"] = row["slow_sfa"] * row["instab_sfa"]
+            r["spearman"]["slow_stable"] = rank_correlation(
+                [row["slow_stable"] for row in r["rows"]], [row["acc"] for row in r["rows"]])
     for c in CRITERIA:
         v = [r["spearman"][c] for r in out]
         print(f"{c:11s} mean Spearman {np.nanmean(v):+.3f}  per seed "

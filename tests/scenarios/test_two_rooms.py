@@ -113,7 +113,7 @@ def test_two_rooms_select_quick(tmp_path):
     m = run_scenario("two-rooms", ["--quick", "--out", str(tmp_path), "--select",
                                    "--no-ceiling", "--no-figures"])
     sel = m["selection"]
-    assert sel["criterion"] == "stability" and sel["seeds"] == [0]
+    assert sel["criterion"] == "slow-stable" and sel["seeds"] == [0]
     assert tuple(sel["chosen"][0]) in CANDIDATES
     run = sel["runs"][0]
     assert len(run["scores"]) == len(run["labelled_accuracy"]) == 16
