@@ -22,10 +22,10 @@ rooms). TUNING two-rooms seeds 0-2, Spearman with the labels per seed: slowness
 +0.06/-0.37/-0.74, next-input prediction -0.06/+0.38/+0.74, stability +0.35/+0.67/+0.52; on
 tuning flat 0 the signs turned (slowness +0.89, stability -0.80). Slow-stable was chosen:
 +0.32/+0.06/-0.17, flat +0.84; its pick minus SMC09's 0.05/0.15: +0.009/+0.012/+0.001/-0.012.
-HELD-OUT two-rooms seeds 100-102: Spearman +0.16/-0.82/-0.71, pick minus SMC09
-+0.007/-0.017/-0.009 (group -0.006); held-out flats 100-101: Spearman +0.96/+0.23, pick minus
-SMC09 +0.014/-0.034 (group -0.010). The criterion does not rank settings reliably in two rooms;
-no candidate ranked both worlds the same way.
+HELD-OUT two-rooms seeds 100-104: Spearman +0.16/-0.82/-0.71/-0.46/-0.60, pick minus SMC09
++0.007/-0.017/-0.009/-0.010/-0.051 (group -0.016: target missed); held-out flats 100-101:
+Spearman +0.96/+0.23, pick minus SMC09 +0.014/-0.034 (group -0.010). The criterion does not
+rank settings reliably in two rooms; no candidate ranked both worlds the same way.
 """
 
 from __future__ import annotations
