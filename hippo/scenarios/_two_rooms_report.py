@@ -63,6 +63,15 @@ def _evaluate(model: RCSFAICA, U: np.ndarray, rooms: dict[str, np.ndarray], n_tr
     return out
 
 
+def _room_cell_accuracy(Y: np.ndarray, rooms: dict[str, np.ndarray], n_train: int) -> float:
+    """The room cell's balanced accuracy on the test part (unit, threshold and sign chosen on
+    the training part) for outputs ``Y`` over the whole recording."""
+    tr, te = slice(0, n_train), slice(n_train, len(Y))
+    cell = M.fit_binary_cell(Y[tr], rooms["room_b"][tr], rooms["room"][tr])
+    m = rooms["room"][te]
+    return M.balanced_accuracy(cell.predict(Y[te])[m], rooms["room_b"][te][m])
+
+
 def _leak_key(leak: tuple[float, ...]) -> str:
     return "leak_" + "_".join(f"{v:g}" for v in leak)
 

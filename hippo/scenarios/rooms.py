@@ -51,6 +51,12 @@ from hippo.scenarios._common import (
     sfa_cutoff,
     write_metrics,
 )
+from hippo.scenarios._selection import (
+    CRITERIA,
+    DEFAULT_CRITERION,
+    select_setting,
+    selection_summary,
+)
 from hippo.sim.flats import random_flat, room_names
 from hippo.sim.record import Recording, record
 
@@ -83,6 +89,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="recovered = right for this many consecutive ticks")
     parser.add_argument("--ceiling", action=argparse.BooleanOptionalAction, default=True,
                         help="also report the supervised ceiling")
+    parser.add_argument("--select", action=argparse.BooleanOptionalAction, default=False,
+                        help="choose the leak pair per flat from the recording alone (label-"
+                             "free criterion over 16 pairs) instead of --leak; report it")
+    parser.add_argument("--select-criterion", choices=CRITERIA, default=DEFAULT_CRITERION,
+                        help="label-free criterion of --select")
     parser.add_argument("--figures", action=argparse.BooleanOptionalAction, default=True,
                         help="write PNGs")
 
@@ -146,6 +157,16 @@ def _nearest_centroid(Y: np.ndarray, centroids: np.ndarray) -> np.ndarray:
     return np.argmin(d, axis=1)
 
 
+def _room_cells_mean(Y: np.ndarray, lab: np.ndarray, n_train: int, n: int) -> float:
+    """For ``--select``'s analysis: the mean over rooms of the room cell's test balanced
+    accuracy (unit, threshold and sign chosen on the training part; corridors left out)."""
+    tr, te = slice(0, n_train), slice(n_train, len(Y))
+    m = lab[te] >= 0
+    return float(np.nanmean([M.balanced_accuracy(
+        M.fit_binary_cell(Y[tr], lab[tr] == r, lab[tr] >= 0).predict(Y[te])[m],
+        (lab[te] == r)[m]) for r in range(n)]))
+
+
 def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any]:
     n = args.n_rooms
     arena = random_flat(n, seed)
@@ -164,6 +185,14 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
                             ica_restarts=min(args.ica_restarts, 3) if quick
                             else args.ica_restarts, sfa_cutoff=sfa_cutoff(args.sfa_cutoff)).params
     regions = None
+    sel = None
+    if getattr(args, "select", False):
+        # the leak pair chosen label-free, with the unit count of a plain run (2 x n for auto)
+        k = args.units if isinstance(args.units, int) and args.units else 2 * n
+        sel = select_setting(rec.sensors, n_train, RCSFAICA(params, n_sfa=k, n_ica=k).params,
+                             lambda Y: _room_cells_mean(Y, lab, n_train, n),
+                             args.select_criterion, paper=tuple(args.leak))
+        params = RCSFAICA(params).set_params(leak=tuple(sel["chosen"])).params
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ICAConvergenceWarning)
         if args.units == "auto":
@@ -194,6 +223,7 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
     out: dict[str, Any] = {
         "seed": seed, "arena": arena.name, "ticks": ticks, "units": units,
         "regions_from_spectrum": regions,
+        "leak": list(model.params.leak),
         "room_occupancy": [float(np.mean(lab == r)) for r in range(n)],
         "room_cell_balanced_accuracy": bacc,
         "room_cell_units": [-1 if c is None else c.unit for c in cells],
@@ -229,6 +259,8 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
                kidnap_recovery_ticks=float(fin.mean()) if fin.size else float("nan"),
                kidnap_recovery_ticks_max=float(fin.max()) if fin.size else float("nan"),
                kidnap_unrecovered=int(np.isnan(rec_t).sum()))
+    if sel is not None:
+        out["selection"] = sel
     return out
 
 
@@ -265,6 +297,9 @@ def run(args: argparse.Namespace) -> dict:
         "flats": rows, "targets": TARGETS,
         "timing_s": {"total": time.perf_counter() - t0},
     }
+    if getattr(args, "select", False):
+        metrics["selection"] = selection_summary([r.pop("selection") for r in rows], seeds)
+        metrics["leak"] = "chosen per flat by --select (see selection.chosen)"
     if args.figures:
         _figure(out, rows, args.n_rooms, seeds)
     write_metrics(out, metrics, summary=(

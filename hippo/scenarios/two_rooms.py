@@ -59,6 +59,12 @@ from hippo.scenarios._common import (
     sfa_cutoff,
     write_metrics,
 )
+from hippo.scenarios._selection import (
+    CRITERIA,
+    DEFAULT_CRITERION,
+    select_setting,
+    selection_summary,
+)
 from hippo.scenarios._two_rooms_report import (
     TARGETS,
     _evaluate,
@@ -68,6 +74,7 @@ from hippo.scenarios._two_rooms_report import (
     _figures,
     _leak_key,
     _leak_sweep_one,
+    _room_cell_accuracy,
     _room_masks,
     _sweep_figure,
     _sweep_summary,
@@ -114,6 +121,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(default: SMC09's 0.05,0.15)")
     parser.add_argument("--leak-sweep", action=argparse.BooleanOptionalAction, default=False,
                         help="also fit a 4x4 grid of leak pairs and report each")
+    parser.add_argument("--select", action=argparse.BooleanOptionalAction, default=False,
+                        help="also choose the leak pair per seed from the recording alone "
+                             "(label-free criterion over the 16-pair grid) and report it "
+                             "beside SMC09's")
+    parser.add_argument("--select-criterion", choices=CRITERIA, default=DEFAULT_CRITERION,
+                        help="label-free criterion of --select")
     parser.add_argument("--hold", type=integer(1, 10_000), default=5,
                         help="recovered = right for this many consecutive ticks")
     parser.add_argument("--figures", action=argparse.BooleanOptionalAction, default=True,
@@ -231,12 +244,13 @@ def run(args: argparse.Namespace) -> dict:
     n_train = ticks * 7 // 8
     configs = {"paper": tuple(args.leak), "corridor": CORRIDOR_LEAK}
     per: dict[str, list[dict[str, Any]]] = {k: [] for k in configs}
+    sel_rows: list[dict[str, Any]] = []
     keep: dict[str, dict[str, Any]] = {}
     t_fit = t_rec = 0.0
     first = None
     sweep_rows: list[dict[str, Any]] = []
     fault_rows: list[dict[str, Any]] = []
-    with Progress(len(seeds) * len(configs), "two-rooms fits") as bar:
+    with Progress(len(seeds) * (len(configs) + args.select), "two-rooms fits") as bar:
         for i, seed in enumerate(seeds):
             t0 = time.perf_counter()
             rec, rec_kid, events, kinds, moved = _recordings(args, arena, ticks, n_train, seed)
@@ -245,7 +259,17 @@ def run(args: argparse.Namespace) -> dict:
             U, U_kid = rec.sensors, rec_kid.sensors
             if first is None:
                 first = (rec, rec_kid, events, kinds, moved)
-            for name, leak in configs.items():
+            seed_configs = dict(configs)
+            if args.select:
+                base = RCSFAICA.smc09(n_reservoir=neurons, seed=seed, n_sfa=args.n_sfa,
+                                      n_ica=args.n_ica, ica_restarts=restarts,
+                                      ica_score=args.ica_score,
+                                      sfa_cutoff=sfa_cutoff(args.sfa_cutoff)).params
+                sel_rows.append(select_setting(
+                    U, n_train, base, lambda Y, r=rooms: _room_cell_accuracy(Y, r, n_train),
+                    args.select_criterion))
+                seed_configs["selected"] = tuple(sel_rows[-1]["chosen"])
+            for name, leak in seed_configs.items():
                 model = RCSFAICA.smc09(n_reservoir=neurons, leak=leak, seed=seed,
                                        n_sfa=args.n_sfa, n_ica=args.n_ica,
                                        ica_restarts=restarts, ica_score=args.ica_score,
@@ -268,7 +292,7 @@ def run(args: argparse.Namespace) -> dict:
                     keep[name] = res
                     if name == "paper":
                         model.save(out / "place_cells.npz")
-                per[name].append({k: v for k, v in res.items()
+                per.setdefault(name, []).append({k: v for k, v in res.items()
                                   if not isinstance(v, np.ndarray | M.BinaryCell)})
                 bar.update()
             if args.leak_sweep:
@@ -329,6 +353,11 @@ def run(args: argparse.Namespace) -> dict:
         metrics["timing_s"]["leak_sweep"] = sweep["seconds"]
     if fault_rows:
         metrics["faults"] = _fault_summary(fault_rows)
+    if args.select:
+        key = "room_cell_test_balanced_accuracy"
+        metrics["selection"] = selection_summary(
+            sel_rows, seeds, [r[key] for r in per["selected"]], [r[key] for r in per["paper"]])
+        metrics["selected"] = {k: summary("selected", k) for k in keys}
     U = rec.sensors
     save_npz(out / "run.npz", dict(
         t=rec.t, x=rec.x, y=rec.y, label=rec.label, region=rec.region,

@@ -6,9 +6,13 @@ import pytest
 
 from hippo.perception import RCSFAICA
 from hippo.perception.selection import (
+    CRITERIA,
     heldout_slowness,
+    instability,
     normalised_slowness,
+    prediction_error,
     rank_correlation,
+    score_sweep,
     select_leak,
 )
 
@@ -26,8 +30,7 @@ def test_normalised_slowness_analytic():
 
 def _slow_source(T=6000, seed=0):
     """8 inputs: a slow square-ish source (switching every ~300 ticks, like a room) seen only
-    through fast sign-flipping carriers, plus noise. A reservoir that integrates over ~tens of
-    ticks recovers it; one with leak 1 (no memory) cannot."""
+    through fast sign-flipping carriers, plus noise."""
     rng = np.random.default_rng(seed)
     s = np.repeat(rng.integers(0, 2, T // 300 + 1), 300)[:T] * 2 - 1.0
     carrier = np.sign(rng.normal(size=(T, 1)))
@@ -36,14 +39,54 @@ def _slow_source(T=6000, seed=0):
     return np.clip(U + rng.normal(0, 0.02, U.shape), 0, 1), s
 
 
-def test_select_leak_prefers_memory_on_a_slow_source():
+def _carries(model, U, s):
+    """How well the best slow feature carries the source (labels: analysis only)."""
+    Y = model.transform(U, return_sfa=True)[1]
+    return max(abs(np.corrcoef(Y[1000:, j], s[1000:])[0, 1]) for j in range(Y.shape[1]))
+
+
+@pytest.mark.parametrize("leaks", [[0.002, 0.05], [1.0, 0.05]])
+def test_stability_picks_the_setting_that_carries_the_source(leaks):
+    """Known answers (measured with the source): leak 0.05 carries it better than 0.002 (a
+    reservoir too slow drifts: 0.81 vs 0.73), and leak 1 better than 0.05 (the tanh of the
+    input products recovers it at once: 0.996 vs 0.81). Stability of the slow features across
+    the two halves picks the better one both times; held-out slowness picks the slower
+    reservoir both times, which is why it was not chosen (it also ranked the two-rooms leak
+    pairs against the labels, see the README row)."""
     U, s = _slow_source()
-    sel = select_leak(U, [1.0, 0.05], n_reservoir=80, n_sfa=2, n_ica=2, ica_restarts=1,
-                      seed=0, input_weight=1.0, input_prob=0.3)
-    assert sel.best_candidate == 0.05 and sel.scores[1] < sel.scores[0]
-    # and the chosen model's slowest feature does carry the source
-    Y = sel.models[1].transform(U, return_sfa=True)[1]
-    assert abs(np.corrcoef(Y[1000:, 0], s[1000:])[0, 1]) > 0.7
+    kw = dict(n_reservoir=80, n_sfa=2, n_ica=2, ica_restarts=1, seed=0, input_weight=1.0,
+              input_prob=0.3)
+    sel = select_leak(U, leaks, criterion="stability", **kw)
+    carried = [_carries(sel.refit(b, len(U)), U, s) for b in range(2)]
+    assert abs(carried[0] - carried[1]) > 0.05
+    assert sel.best == int(np.argmax(carried)) and sel.models == []
+    slow = select_leak(U, leaks, criterion="slowness", **kw)
+    assert slow.best_candidate == min(leaks) and len(slow.models) == 2
+
+
+def _noisy_mean_source(T=6000, seed=0):
+    """The room shifts the inputs' mean by far less than their per-tick noise: only a
+    reservoir that averages over tens of ticks sees it."""
+    rng = np.random.default_rng(seed)
+    s = np.repeat(rng.integers(0, 2, T // 300 + 1), 300)[:T] * 2 - 1.0
+    U = 0.5 + 0.1 * s[:, None] * np.linspace(0.6, 1.4, 8)[None] + rng.normal(0, 0.2, (T, 8))
+    return np.clip(U, 0, 1), s
+
+
+@pytest.mark.parametrize("other", [1.0, 0.3])
+def test_slow_stable_picks_the_reservoir_that_averages(other):
+    """Known answers (measured with the source): leak 0.05 carries it at 0.98, leak 1 at 0.88,
+    0.3 at 0.96; the default criterion (slowness x instability) picks 0.05 both times, while
+    stability alone picks 0.3 over 0.05. (Its known weakness, in the docstring of
+    ``score_sweep``: against a reservoir much slower than the world, 0.01 or 0.002, it picks
+    the slower one, as held-out slowness does.)"""
+    U, s = _noisy_mean_source()
+    kw = dict(n_reservoir=80, n_sfa=2, n_ica=2, ica_restarts=1, seed=0, input_weight=1.0,
+              input_prob=0.3)
+    sel = select_leak(U, [other, 0.05], **kw)
+    carried = [_carries(sel.refit(b, len(U)), U, s) for b in range(2)]
+    assert carried[1] > carried[0] + 0.01
+    assert sel.best_candidate == 0.05 and sel.criterion == "slow-stable"
 
 
 def test_heldout_slowness_and_rank_correlation_checks():
@@ -56,3 +99,53 @@ def test_heldout_slowness_and_rank_correlation_checks():
     assert rank_correlation([1, 2, 3], [0.1, 0.2, 0.3]) == pytest.approx(-1.0)
     with pytest.raises(ValueError):
         rank_correlation([1, 2], [1, 2])
+
+
+def test_prediction_error_known_answers():
+    rng = np.random.default_rng(1)
+    U = rng.uniform(size=(2000, 3))
+    # features that are the next input exactly: no error; features of pure noise: ~1
+    Y = np.vstack([U[1:], U[-1:]])
+    assert prediction_error(Y, U, 1500, horizon=1) < 1e-3   # (the ridge shrinks a little)
+    assert prediction_error(rng.normal(size=(2000, 2)), U, 1500) == pytest.approx(1.0, abs=0.05)
+    with pytest.raises(ValueError, match="held-out"):
+        prediction_error(Y, U, 1999)
+
+
+def test_instability_known_answers():
+    rng = np.random.default_rng(2)
+    Y = rng.normal(size=(3000, 3))
+    # the same units in another order and sign are perfectly stable
+    assert instability(Y, -Y[:, [2, 0, 1]]) == pytest.approx(0.0, abs=1e-9)
+    assert instability(Y, rng.normal(size=(3000, 3))) > 0.9
+    with pytest.raises(ValueError):
+        instability(Y, Y[:, :2])
+
+
+def test_score_sweep_never_reads_the_test_rows_and_refit_is_a_fit():
+    U, _ = _slow_source(2400)
+    kw = dict(n_reservoir=40, n_sfa=2, n_ica=2, ica_restarts=1, seed=3)
+    sel = select_leak(U, [0.05, 0.5], criterion="stability", n_rows=2000, **kw)
+    F = sel.features
+    for X in F.X:
+        X[2000:] = 0.5      # the "test part" changed: the scores must not move
+    F._moments.clear()
+    again, _ = score_sweep(F, 2000, "stability")
+    np.testing.assert_allclose(again, sel.scores)
+    # refit on the whole 2000 rows == a plain fit of that leak on the first 2000 ticks
+    m = RCSFAICA.smc09(leak=0.5, **kw).fit(U[:2000])
+    np.testing.assert_allclose(sel.refit(1, 2000).transform(U[:2000]), m.transform(U[:2000]),
+                               atol=1e-4)
+    with pytest.raises(ValueError, match="criterion"):
+        score_sweep(F, 2000, "labels")
+    with pytest.raises(ValueError, match="n_rows"):
+        score_sweep(F, 3000)
+
+
+@pytest.mark.parametrize("criterion", CRITERIA)
+def test_each_criterion_scores_every_candidate(criterion):
+    U, _ = _slow_source(2000)
+    sel = select_leak(U, [1.0, 0.05, 0.3], criterion=criterion, n_reservoir=30, n_sfa=2,
+                      n_ica=2, ica_restarts=1)
+    assert sel.scores.shape == (3,) and np.all(np.isfinite(sel.scores))
+    assert sel.scores[sel.best] == sel.scores.min() and sel.criterion == criterion

@@ -38,3 +38,18 @@ def test_rooms_arguments():
         run_scenario("rooms", ["--quick", "--n-rooms", "1"])
     with pytest.raises(SystemExit):
         run_scenario("rooms", ["--quick", "--arenas", "3", "--seeds", "0-1"])
+
+
+@pytest.mark.slow
+def test_rooms_select_quick(tmp_path):
+    """--select: the flat's leak pair is the one the label-free criterion chose, and the
+    flat's metrics are that setting's."""
+    m = run_scenario("rooms", ["--quick", "--out", str(tmp_path), "--select", "--no-ceiling",
+                               "--no-figures"])
+    sel = m["selection"]
+    run = sel["runs"][0]
+    assert m["flats"][0]["leak"] == sel["chosen"][0] == run["chosen"]
+    assert len(run["scores"]) == 16 and -1 <= run["spearman"] <= 1
+    # picked and SMC09's pair, fitted alike over the sweep, both beat chance (0.5)
+    assert sel["picked_accuracy"] == [run["chosen_accuracy_in_sweep"]]
+    assert 0.5 < run["paper_accuracy_in_sweep"] <= 1 and 0.5 < run["chosen_accuracy_in_sweep"]

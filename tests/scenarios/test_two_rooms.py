@@ -3,6 +3,9 @@
 import json
 import math
 
+import numpy as np
+import pytest
+
 from hippo.cli import run_scenario
 
 
@@ -99,3 +102,32 @@ def test_fault_curve_guard_helps(tmp_path):
     # with no fault the guard changes (almost) nothing; with one dead sensor it helps
     assert abs(raw["0"]["mean"] - guard["0"]["mean"]) < 0.02
     assert guard["1"]["mean"] > raw["1"]["mean"] + 0.05
+
+
+@pytest.mark.slow
+def test_two_rooms_select_quick(tmp_path):
+    """--select: a leak pair chosen per seed without labels, with its rank correlation and
+    the picked vs SMC09 comparison in metrics.json."""
+    from hippo.scenarios._selection import CANDIDATES
+
+    m = run_scenario("two-rooms", ["--quick", "--out", str(tmp_path), "--select",
+                                   "--no-ceiling", "--no-figures"])
+    sel = m["selection"]
+    assert sel["criterion"] == "slow-stable" and sel["seeds"] == [0]
+    assert tuple(sel["chosen"][0]) in CANDIDATES
+    run = sel["runs"][0]
+    assert len(run["scores"]) == len(run["labelled_accuracy"]) == 16
+    assert run["chosen"] == list(CANDIDATES[int(np.argmin(run["scores"]))])
+    assert -1 <= sel["spearman_mean"] <= 1
+    # quick seed 0: every candidate's room cell is far above chance (0.68-0.97)
+    assert min(run["labelled_accuracy"]) > 0.6
+    assert sel["paper_accuracy"] == [m["room_cell_test_balanced_accuracy"]]
+    assert sel["picked_accuracy"] == [m["selected"]["room_cell_test_balanced_accuracy"]
+                                      ["per_seed"][0]]
+    assert sel["groups"][0]["picked_minus_paper"] == pytest.approx(
+        sel["picked_accuracy"][0] - sel["paper_accuracy"][0])
+
+
+def test_two_rooms_select_rejects_unknown_criterion():
+    with pytest.raises(SystemExit):
+        run_scenario("two-rooms", ["--quick", "--select", "--select-criterion", "labels"])
