@@ -7,7 +7,7 @@ that follows, without labels (lower is better):
 * ``"slowness"``: SFA's own objective where the model did not learn, the mean over the slow
   features of ``Δ_val(y_i) = < (y_i(t+1) - y_i(t))² >_val / var_val(y_i)``;
 * ``"prediction"``: how badly a ridge map from the slow features predicts the next input;
-* ``"stability"``: ``1 -`` the mean |correlation| of matched slow features (Hungarian) of two
+* ``"stability"``: ``1 -`` the mean absolute correlation of matched slow features (Hungarian) of two
   SFA fits on the two halves of the fitting part, on the held-out block;
 * ``"slow-stable"`` (the default): held-out slowness times instability.
 
