@@ -163,19 +163,27 @@ class Brain:
         self.readouts: dict = {}
         self.decide.reset_episode()
 
-    def lifted(self, heading_change: float = 0.0) -> None:
+    def lifted(self, heading_change: float = 0.0, *, keep_drives: bool = False) -> None:
         """The robot was picked up and put down elsewhere: no transition spans the jump, and
         the state competition starts afresh (the place cells keep their memory).
 
         ``heading_change`` (rad) is how much the robot was turned while carried; the heading
         estimate follows it (a robot's compass or head-direction system, not its place cells).
+        ``keep_drives``: a perturbation in the middle of a task (a kidnap, a rescue): a drive
+        that a finished wait inhibited stays inhibited until the robot has moved
+        ``release_distance`` from where it was put and left that stop's place (being carried
+        satisfies no drive and renews none). False (default): a new trial, every drive
+        released.
         """
         self.pi.heading = wrap_angle(self.pi.heading + heading_change)
         self.layer.reset(keep_states=True)
         self.nonocc.reset()
-        self.decide.release_all()
+        kept = self.decide.inhibitions() if keep_drives else {}
+        if not keep_drives:
+            self.decide.release_all()
         self._reset_episode()
         self.decide.lifted()
+        self.decide.restore_inhibitions(kept, self.pi.pose[:2])
         self._settle_until = self.t + self.p.settle_time
         if self.localiser is not None:
             self.localiser.reset(self.t)

@@ -69,6 +69,18 @@ class Decider(RunupRules):
         self._visits.clear()
         self._explore_until = -math.inf
 
+    def inhibitions(self) -> dict[str, int]:
+        """Drive -> the context state it was inhibited in, for the drives a finished wait
+        holds."""
+        return dict(self._inhibited)
+
+    def restore_inhibitions(self, kept: dict[str, int], where: tuple[float, float]) -> None:
+        """Hold ``kept`` (from :meth:`inhibitions`) again, each to be released as after a wait
+        that ended at ``where`` (path integration)."""
+        self._inhibited.update(kept)
+        for d in kept:
+            self._inhibited_at[d] = (float(where[0]), float(where[1]))
+
     def release_all(self) -> None:
         """Release every drive a finished wait inhibited."""
         for d in list(self._inhibited):

@@ -363,3 +363,28 @@ def test_a_new_move_infers_its_way_back_which_experience_confirms_or_forgets():
     for where in "BAC":
         run.ticks(15, where, moving=True)
     assert not any(off.graph.inferred(t) for t in off.graph)
+
+
+def test_a_kidnap_keeps_the_drives_a_wait_holds_and_a_new_trial_releases_them():
+    def held() -> tuple[Brain, Run]:
+        brain, run = make(release_distance=60.0)
+        for _ in range(3):
+            run.trial(delay=3.0)
+        brain.drives.set_level("sound", 1.0)
+        run.trial(delay=None)                 # the wait ends by non-occurrence: inhibited
+        assert brain.drives.is_inhibited("sound")
+        return brain, run
+
+    brain, run = held()
+    brain.lifted(keep_drives=True)             # carried: no drive satisfied, none renewed
+    assert brain.drives.is_inhibited("sound")
+    run.ticks(30, "B", moving=True)            # 30 cm from where it was put
+    run.ticks(20, "C", moving=True)            # C entered at 30 cm: not yet
+    assert brain.drives.is_inhibited("sound")
+    run.ticks(15, "B", moving=True)            # B entered at 50 cm: not yet
+    assert brain.drives.is_inhibited("sound")
+    run.ticks(15, "C", moving=True)            # C entered at 65 cm: released
+    assert not brain.drives.is_inhibited("sound")
+    brain, run = held()
+    brain.lifted()                             # a new trial: released at once
+    assert not brain.drives.is_inhibited("sound")

@@ -178,7 +178,7 @@ def _rescue(s: Session, course: PatrolCourse) -> None:
     """The operator puts the robot back on the route 20 cm ahead of where it was."""
     route, loop = course.route, course.loop
     x, y, heading = route.at((loop.progress or 0.0) + 20.0)
-    s.put(x, y, heading, event="rescue")
+    s.put(x, y, heading, event="rescue", keep_drives=True)
     loop.reset()
     course.laps()
 

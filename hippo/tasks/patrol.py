@@ -351,7 +351,7 @@ class PatrolCourse:
         kx, ky, heading = self.route.at(
             self.route.progress(*self.checkpoints[names.index(low)]) - 75.0)
         s.phase, s.trial = PatrolPhase.KIDNAP, 0
-        s.put(kx, ky, heading)
+        s.put(kx, ky, heading, keep_drives=True)   # a perturbation, not a new trial
         self.loop.reset()
         t_kid = s.t
         obs = s.run(int(300 / self.dt), until=lambda o: agent.mode == Mode.WAIT)

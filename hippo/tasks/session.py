@@ -92,9 +92,12 @@ class Session:
         self.teacher.block(seconds)
         return self.run(self.ticks(seconds + extra), until=lambda o: not self.teacher.blocking)
 
-    def put(self, x: float, y: float, heading: float, *, event: str = "kidnap") -> None:
+    def put(self, x: float, y: float, heading: float, *, event: str = "kidnap",
+            keep_drives: bool = False) -> None:
         """Pick the robot up and put it down at ``(x, y, heading)``; the agent knows it was
-        lifted and how much it was turned (not where it is).
+        lifted and how much it was turned (not where it is). ``keep_drives``: the drives a
+        finished wait holds stay held (a kidnap in the middle of a task), see
+        :meth:`hippo.brain.Brain.lifted`; False: a new trial.
 
         The turn is counted from the heading the agent last integrated: :attr:`obs`, the
         observation it has not acted on yet, holds one more tick of odometry (its rotation
@@ -102,7 +105,7 @@ class Session:
         half a radian per kidnap: place preference, tuning seed 0, 0.85 rad after 8 trials)."""
         turned = wrap_angle(heading - self.world.truth.pose[2] + float(self.obs.odometry[2]))
         self.world.place_robot(x, y, heading, event=event)
-        self.agent.lifted(heading_change=turned)
+        self.agent.lifted(heading_change=turned, keep_drives=keep_drives)
 
     def save(self, out: Any, phases: Any = None) -> dict:
         """Write ``run.npz`` and ``map.graphml`` into ``out`` (see :meth:`Log.save`)."""
