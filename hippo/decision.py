@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 from collections import deque
+from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
@@ -245,18 +246,12 @@ class Decider(RunupRules):
         top = float(acts.max())
         here = b.state if b.kind(b.state) == StateKind.PLACE else None
         for name in b.drives.names:
-            if (b.drives.is_inhibited(name)
-                    or b.drives.level(name) < p.planner.exploration_threshold):
+            if not self._wanted(name):
                 continue
-            for a, _ in b.drives.links(name):
-                ka = b.layer.key(a)
-                c = ka.context
-                if ka.kind != StateKind.STILL or c is None or c == b.state:
-                    continue
+            for c, a in self._taught_stops(name):
                 kc = b.layer.key(c)
-                if kc.kind != StateKind.PLACE or kc.index >= acts.size:  # type: ignore[operator]
-                    continue
-                if not b.graph.has_state(c) or (c, a) not in b.graph:
+                if (c == b.state or kc.kind != StateKind.PLACE
+                        or kc.index >= acts.size):  # type: ignore[operator]
                     continue
                 alias = p.aliases and here is not None and self.alias_of(here, c)
                 if float(acts[kc.index]) < p.coactive * top and not alias:  # type: ignore[index]
@@ -268,6 +263,23 @@ class Decider(RunupRules):
                 # timed from the recognition, or from entering the alias (as if it were C)
                 self.mode, self._approach_t0 = Mode.APPROACH, b.entered_at if alias else b.t
                 return
+
+    def _wanted(self, name: str) -> bool:
+        """Is drive ``name`` free (not held by a finished wait) and active?"""
+        b = self.b
+        return (not b.drives.is_inhibited(name)
+                and b.drives.level(name) >= b.p.planner.exploration_threshold)
+
+    def _taught_stops(self, name: str) -> Iterator[tuple[int, int]]:
+        """The stops ``C -> still@C`` in the map that drive ``name`` is linked to (through
+        its wait ``still@C -> ...``), as ``(C, still@C)``."""
+        b = self.b
+        for a, _ in b.drives.links(name):
+            ka = b.layer.key(a)
+            c = ka.context
+            if (ka.kind == StateKind.STILL and c is not None and b.graph.has_state(c)
+                    and (c, a) in b.graph):
+                yield c, a
 
     def alias_of(self, place: int, c: int) -> bool:
         """Does ``place``, just entered, stand in for place ``c`` this time: did the robot come

@@ -37,6 +37,23 @@ class RunupRules:
     def wait_drive(self) -> int:  # provided by the Decider
         raise NotImplementedError
 
+    def _wanted(self, name: str) -> bool:  # provided by the Decider
+        raise NotImplementedError
+
+    def _taught_stops(self, name: str) -> Any:  # provided by the Decider
+        raise NotImplementedError
+
+    def _in_order(self, name: str) -> tuple[float, float] | None:
+        """``(run-up, ran)`` of drive ``name`` if its run-up is taught and counts from the
+        current anchor (the last wait was for the drive taught right before it): ``ran`` is
+        the distance run since that wait; else None."""
+        b = self.b
+        runup = b.runups.get(name)
+        if (runup is None or b.wait_ended_at is None
+                or b.runup_after.get(name) != b.last_wait_drive):
+            return None
+        return runup, b.odometer - b.wait_ended_at
+
     def _correct_runup(self, name: str) -> None:
         """A taught run-up is an upper bound: a detour during the lesson makes it too long,
         never too short. Two stops for drive ``name`` in a row that the robot made by place
@@ -67,13 +84,12 @@ class RunupRules:
         it). A stop that the anchor did not predict (a stop made again just after a wait, or
         for a drive out of the taught order) would shift every run-up after it."""
         b = self.b
-        runup = b.runups.get(name)
-        if b.wait_ended_at is None or b.last_wait_drive is None or runup is None:
+        if b.wait_ended_at is None or b.last_wait_drive is None or name not in b.runups:
             return True
-        ran = b.odometer - b.wait_ended_at
-        if b.runup_after.get(name) == b.last_wait_drive and abs(ran - runup) <= b.p.runup_window:
+        anchored = self._in_order(name)
+        if anchored is not None and abs(anchored[1] - anchored[0]) <= b.p.runup_window:
             return True
-        return ran > max(b.runups.values()) + b.p.runup_window
+        return b.odometer - b.wait_ended_at > max(b.runups.values()) + b.p.runup_window
 
     def _runup_due(self) -> bool:
         """Odometric recognition of a taught stop (``BrainParams.runup_stop``): the robot's last
@@ -85,21 +101,12 @@ class RunupRules:
         farther off (beyond ``runup_window``) neither rule applies."""
         b = self.b
         p = b.p
-        if p.runup_stop < 0 or b.wait_ended_at is None or b.last_wait_drive is None:
+        if p.runup_stop < 0:
             return False
-        ran = b.odometer - b.wait_ended_at
         for name in b.drives.names:
-            runup = b.runups.get(name)
-            if (runup is None or b.runup_after.get(name) != b.last_wait_drive
-                    or not runup + p.runup_stop <= ran < runup + p.runup_window
-                    or b.drives.is_inhibited(name)
-                    or b.drives.level(name) < p.planner.exploration_threshold):
+            if not self._runup_passed(name) or not self._wanted(name):
                 continue
-            for a, _ in b.drives.links(name):
-                c = b.layer.key(a).context
-                if (b.kind(a) != StateKind.STILL or c is None or not b.graph.has_state(c)
-                        or (c, a) not in b.graph):
-                    continue
+            for c, a in self._taught_stops(name):
                 if self.mode != Mode.MOVE or not self._near_in_map(c, p.runup_hops):
                     return False
                 # an approach that is over at once (:meth:`_past_runup`), timed as if C had
@@ -139,16 +146,17 @@ class RunupRules:
     def _past_runup(self) -> bool:
         """Has the robot, approaching a stop with a taught run-up from its last wait, run
         that run-up and ``runup_stop`` cm more (see :meth:`_runup_due`)?"""
-        b = self.b
         k = self.wait_drive()
-        if b.p.runup_stop < 0 or k < 0 or b.wait_ended_at is None:
+        return self.b.p.runup_stop >= 0 and k >= 0 and self._runup_passed(self.b.drives.names[k])
+
+    def _runup_passed(self, name: str) -> bool:
+        """Has the robot run drive ``name``'s run-up and ``runup_stop`` cm more since the
+        anchor it counts from (and not beyond ``runup_window``)?"""
+        anchored = self._in_order(name)
+        if anchored is None:
             return False
-        name = b.drives.names[k]
-        runup = b.runups.get(name)
-        if runup is None or b.runup_after.get(name) != b.last_wait_drive:
-            return False
-        ran = b.odometer - b.wait_ended_at
-        return runup + b.p.runup_stop <= ran < runup + b.p.runup_window
+        runup, ran = anchored
+        return runup + self.b.p.runup_stop <= ran < runup + self.b.p.runup_window
 
     def _before_runup(self) -> bool:
         """Has the robot, approaching a stop with a taught run-up, run clearly less than it
