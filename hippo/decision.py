@@ -207,6 +207,20 @@ class Decider(RunupRules):
                     if (not a.is_wait
                             and abs(wrap_angle(a.heading - b.pi.heading)) > b.p.turn_limit):
                         vals[i] *= b.p.turn_discount
+            if b.p.own_stops_only:
+                # a stop is made for a drive that wants it: a stop whose wait serves no free,
+                # active drive is no way through to another drive's goal (the map may hold a
+                # short cut out of it that an aliased place drew)
+                for i, t in enumerate(out):
+                    if b.kind(t[1]) == StateKind.STILL and not self._stop_wanted(t[1]):
+                        vals[i] = 0.0
+                if vals.max() <= 0:
+                    moves = [t for t in out if b.kind(t[1]) != StateKind.STILL]
+                    if not moves:
+                        self.mode = lost
+                        return
+                    vals = np.array([1.0 if t == moves[int(b.rng.integers(len(moves)))] else 0.0
+                                     for t in out])
             if tr not in out or vals[out.index(tr)] < vals.max():
                 tr = out[int(np.argmax(vals))] if vals.max() > 0 else \
                     out[int(b.rng.integers(len(out)))]
@@ -221,6 +235,13 @@ class Decider(RunupRules):
         else:
             self.mode = Mode.WAIT
             self._waiting_on = tr
+
+    def _stop_wanted(self, still: int) -> bool:
+        """Is a drive linked to a wait out of stop ``still`` free and active?"""
+        b = self.b
+        nxt = b.graph.outgoing(still) if b.graph.has_state(still) else []
+        return any(self._wanted(n) and any(t in b.drives.links(n) for t in nxt)
+                   for n in b.drives.names)
 
     def _activity(self, tr: Transition) -> float:
         act = self.b.planner.activity(self.b.graph, self.b.drives)

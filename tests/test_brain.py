@@ -388,3 +388,55 @@ def test_a_kidnap_keeps_the_drives_a_wait_holds_and_a_new_trial_releases_them():
     brain, run = held()
     brain.lifted()                             # a new trial: released at once
     assert not brain.drives.is_inhibited("sound")
+
+
+def test_a_stop_is_no_short_cut_for_another_drives_goal():
+    # Two drives. The stop at A serves "sound"; after one wait there the robot met D at once
+    # (an aliased place: the map holds moving@A -> D), while the way on without stopping runs
+    # A -> B -> C -> F -> D. "far" wants the move out of D. With "sound" held by a finished
+    # wait, the max-product map routes "far" through A's stop (fewer hops); own_stops_only
+    # gives that stop no activity, and the robot moves on instead
+    units = {k: np.eye(6)[i] for i, k in enumerate("ABCFDE")}
+
+    class Six(Stub):
+        n_units = 6
+
+        def step(self, obs, truth=None):
+            return units[self.where]
+
+    def choice(own: bool) -> tuple[Brain, tuple[int, int]]:
+        places = Six()
+        p = BrainParams(states=StateLayerParams(normalize="fixed", place_scale=0.5,
+                                                context_time=1.0),
+                        settle_time=0.0, cycle_visits=100, own_stops_only=own)
+        brain = Brain(places, drives={"sound": DriveParams(), "far": DriveParams()}, params=p)
+        run = Run(brain, places)
+        run.ticks(15, "E", moving=True)
+        run.ticks(10, "A", moving=True)
+        run.ticks(25, "A", moving=False)          # the stop at A ...
+        run.ticks(3, "A", moving=True)
+        for where in "DEA":                       # ... then D at once (the short cut)
+            run.ticks(15, where, moving=True)
+        for where in "BCFDE":                     # the way on without stopping
+            run.ticks(15, where, moving=True)
+        a, d, e = (brain.layer.find("place", "ABCFDE".index(k)) for k in "ADE")
+        still = brain.layer.find("still", context=a)
+        wait = next(t for t in brain.graph.outgoing(still) if brain.graph.action(t).is_wait)
+        brain.drives.link("sound", wait)
+        brain.drives.link("far", (d, e))
+        brain.drives.set_level("far", 1.0)
+        brain.drives.inhibit("sound")             # served by a finished wait
+        run.ticks(15, "E", moving=True)
+        run.ticks(6, "A", moving=True)            # A wins after a few ticks: the choice
+        assert brain.state == a
+        return brain, brain.decide.current
+
+    brain, tr = choice(own=False)
+    a = brain.layer.find("place", 0)
+    assert tr == (a, brain.layer.find("still", context=a))   # through the stop
+    brain, tr = choice(own=True)
+    assert tr == (a, brain.layer.find("place", 1))           # A -> B: on, without stopping
+    brain.drives.release("sound")
+    brain.drives.set_level("sound", 1.0)
+    brain.decide.choose()                                    # its own drive wants it: it stops
+    assert brain.decide.current == (a, brain.layer.find("still", context=a))

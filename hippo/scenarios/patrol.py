@@ -127,6 +127,9 @@ def run(args: argparse.Namespace) -> dict:
         "misplaced_stops": int(sum(r["misplaced_stops"] for r in rows)),
         "kidnap": {"drive_levels": levels, "highest_drive": max(levels, key=levels.get),
                    "put_before": low, "first_stop": kidnap_stop,
+                   # the map recognised a place change (None: no localiser, or not within
+                   # the run to the first stop)
+                   "relocalised_after_s": course.relocalised_s,
                    "passed_the_low_drive": bool(kidnap_stop is not None
                                                 and kidnap_stop["nearest_checkpoint"] != low
                                                 and kidnap_stop["distance_cm"] < 30.0)},

@@ -185,6 +185,7 @@ class PatrolCourse:
         grid = np.arange(0.0, L, 1.0)
         far = np.min(np.abs((grid[:, None] - s_cp[None, :] + L / 2) % L - L / 2), axis=1)
         self.quiet = float(grid[int(np.argmax(far))])
+        self.relocalised_s: float | None = None   # the kidnap's time to re-localise
 
     @property
     def lap_s(self) -> float:
@@ -355,6 +356,8 @@ class PatrolCourse:
         self.loop.reset()
         t_kid = s.t
         obs = s.run(int(300 / self.dt), until=lambda o: agent.mode == Mode.WAIT)
+        loc = agent.brain.localiser
+        self.relocalised_s = None if loc is None else loc.time_to_localise
         stop = None
         if agent.mode == Mode.WAIT:
             d = [math.dist(s.truth.pose[:2], c) for c in self.checkpoints]
