@@ -25,7 +25,9 @@ Peers live in their own environment, never as project dependencies::
 The script runs in the project's environment and appends ``benchmarks/.venv-peers``'s
 site-packages to ``sys.path`` (after the project's, so numpy stays the project's). MDP's
 ``SFANode`` is not used: MDP 3.6 does not import with numpy 2. Missing peers are skipped.
-Times are the best of ``--repeats`` runs (wall clock, seconds). On a machine shared with other
+Times are the best of ``--repeats`` runs (wall clock, seconds); the whole fit is also timed
+interleaved with the peers' pipeline (one of each per round, process CPU time beside wall time;
+``--whole-only`` runs just that). On a machine shared with other
 work, run it with ``OPENBLAS_NUM_THREADS=1`` (multi-threaded BLAS stalls on busy cores; the
 setting applies to hippo and the peers alike).
 """
@@ -55,6 +57,7 @@ from hippo.perception import (  # noqa: E402
 )
 
 warnings.simplefilter("ignore", ICAConvergenceWarning)
+warnings.filterwarnings("ignore", message="FastICA did not converge")  # sklearn's, expected
 
 
 def best_of(fn, repeats: int) -> tuple[float, object]:
@@ -64,6 +67,18 @@ def best_of(fn, repeats: int) -> tuple[float, object]:
         out = fn()
         best = min(best, time.perf_counter() - t0)
     return best, out
+
+
+def interleaved(runs: dict, repeats: int) -> dict[str, tuple[float, float]]:
+    """Each contender once per round, ``repeats`` rounds: best wall and best process CPU time."""
+    best = {k: (np.inf, np.inf) for k in runs}
+    for _ in range(repeats):
+        for k, fn in runs.items():
+            w, c = time.perf_counter(), time.process_time()
+            fn()
+            w, c = time.perf_counter() - w, time.process_time() - c
+            best[k] = (min(best[k][0], w), min(best[k][1], c))
+    return best
 
 
 def recording(ticks: int) -> np.ndarray:
@@ -89,12 +104,52 @@ def eigh_sfa(X: np.ndarray, n: int) -> np.ndarray:
     return W
 
 
+def whole_fit(model, res, Utr: np.ndarray, neurons: int, repeats: int
+              ) -> dict[str, tuple[float, float]] | None:
+    """``model.fit`` interleaved with the peers' draw + harvest + eigh SFA + sklearn ICA in one
+    function (the faster SFA peer: conservative), both under the free cores' BLAS threads (as
+    ``run_all.py``); best wall and best CPU of each, or None without the peers."""
+    try:
+        from reservoirpy.mat_gen import normal
+        from reservoirpy.nodes import Reservoir as RpyReservoir
+        from sklearn.decomposition import FastICA as SkICA
+    except Exception as exc:
+        print(f"(peers unavailable: {exc})", file=sys.stderr)
+        return None
+    from threadpoolctl import threadpool_limits
+
+    from hippo._threads import free_cores
+
+    def peer_fit():
+        normal(neurons, neurons, sr=0.99, connectivity=1.0, seed=0)
+        node = RpyReservoir(units=neurons, lr=0.1, W=res.W_res, Win=res.W_in, bias=0.0,
+                            input_dim=Utr.shape[1])
+        Xp = np.concatenate([Utr, node.run(Utr)], axis=1)
+        Wp = eigh_sfa(Xp, 4)
+        SkICA(n_components=4, fun="cube", algorithm="parallel", whiten="unit-variance",
+              random_state=0).fit(((Xp - Xp.mean(0)) / Xp.std(0)) @ Wp)
+
+    with threadpool_limits(free_cores()):
+        return interleaved({"hippo": lambda: model.fit(Utr), "peer": peer_fit}, repeats)
+
+
+def report_whole(whole: dict[str, tuple[float, float]] | None, repeats: int) -> None:
+    if whole:
+        (hw, hc), (pw, pc) = whole["hippo"], whole["peer"]
+        print(f"\nwhole fit, interleaved (best of {repeats}; wall, process CPU): hippo "
+              f"{hw:.3f} s ({hc:.3f} s CPU), ReservoirPy + eigh SFA + sklearn FastICA {pw:.3f} s "
+              f"({pc:.3f} s CPU): peer/hippo {pw / hw:.2f}x wall, {pc / hc:.2f}x CPU; load "
+              f"{os.getloadavg()[0]:.2f}")
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ticks", type=int, default=18120)
     ap.add_argument("--neurons", type=int, default=600)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--sweep", type=int, default=16, help="leak configurations in the sweep")
+    ap.add_argument("--whole-only", action="store_true",
+                    help="only the interleaved whole fit against the peers")
     a = ap.parse_args(argv)
     U = recording(a.ticks)
     n_train = a.ticks * 7 // 8
@@ -103,6 +158,9 @@ def main(argv: list[str] | None = None) -> int:
 
     model = RCSFAICA.smc09(n_reservoir=a.neurons, ica_restarts=1, seed=0)
     res = Reservoir(model.params.reservoir_params())
+    if a.whole_only:
+        report_whole(whole_fit(model, res, Utr, a.neurons, a.repeats), a.repeats)
+        return 0
     # ---- hippo
     t_h, X_t = best_of(lambda: res.run(Utr), a.repeats)
     X = np.concatenate([Utr.astype(np.float32), X_t], axis=1)
@@ -170,6 +228,7 @@ def main(argv: list[str] | None = None) -> int:
         peer["ica"], _ = best_of(sk_ica, a.repeats)
     except Exception as exc:
         print(f"(scikit-learn unavailable: {exc})", file=sys.stderr)
+    whole = whole_fit(model, res, Utr, a.neurons, a.repeats)
     sfa_peers = [v for v in (peer.get("sfa"), peer.get("eigh")) if v]
     if {"draw", "harvest", "ica"} <= peer.keys() and sfa_peers:
         # the faster SFA peer, so the ratio is conservative
@@ -197,6 +256,7 @@ def main(argv: list[str] | None = None) -> int:
         f"batched harvest {t_sweep_h:.2f} s (2 threads) vs {len(leaks)} x {t_h:.2f} s serially")
     row("step() per tick", step_us * 1e-6, None, f"{step_us:.1f} µs/tick")
 
+    report_whole(whole, a.repeats)
     print(f"\nRC-SFA-ICA on the SMC09 size: {a.ticks} ticks × 8 inputs, {a.neurons} neurons, "
           f"4 SFA / 4 ICA, train {n_train} ticks (best of {a.repeats})\n")
     print(f"{'stage':38s} {'hippo (s)':>10s} {'peer (s)':>10s} {'peer/hippo':>11s}  note")

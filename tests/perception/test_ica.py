@@ -189,3 +189,21 @@ def test_degenerate_input_directions_are_refused():
     with pytest.raises(ValueError, match="fewer than n_ica=5 non-degenerate directions"):
         FastICA(seed=0).fit(X)
     assert FastICA(seed=0, n_components=4).fit(X).components_.shape == (4, 5)
+
+
+def test_symmetric_decorrelation_is_scipy_eigh_bit_for_bit():
+    # the direct LAPACK call gives the numbers of scipy.linalg.eigh, and (W Wᵀ)^{-1/2} W is
+    # orthonormal
+    import scipy.linalg
+
+    from hippo.perception.ica import _sym_decorrelate
+
+    rng = np.random.default_rng(1)
+    for k in (1, 2, 4, 8, 70):
+        for _ in range(5):
+            W = rng.standard_normal((k, k))
+            s, u = scipy.linalg.eigh(W @ W.T, check_finite=False)
+            ref = (u / np.sqrt(np.clip(s, np.finfo(float).tiny, None))) @ u.T @ W
+            out = _sym_decorrelate(W)
+            assert np.array_equal(out, ref)
+            assert np.allclose(out @ out.T, np.eye(k), atol=1e-8)
