@@ -63,3 +63,22 @@ def test_free_cores_follow_the_load():
         assert free_cores(load=2.0) == cores - 1
     assert 1 <= free_cores() <= cores
     assert blas_budget(2, cores=2) == 1 and blas_budget(1, cores=4) == 4
+
+
+def test_sfa_gives_the_same_bits_on_one_or_two_blas_threads():
+    # the free cores (so the BLAS threads of a fit) follow the machine's load; the eigensolvers
+    # sum in another order on two threads, so SFA solves on one: same data, same bits
+    import numpy as np
+
+    from hippo.perception.sfa import SFA
+
+    rng = np.random.default_rng(0)
+    t = np.arange(4000)
+    slow = np.sin(2 * np.pi * t / 800)[:, None]
+    X = np.tanh(slow @ rng.standard_normal((1, 400)) + 0.3 * rng.standard_normal((4000, 400)))
+    X = np.cumsum(X, axis=0) * 0.01 + X            # correlated, reservoir-like columns
+    fits = []
+    for n in (1, 2, 1, 2):
+        with blas_threads(n):
+            fits.append(SFA(n_components=4).fit(X).W_)
+    assert all(np.array_equal(fits[0], w) for w in fits[1:])
