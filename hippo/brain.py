@@ -313,7 +313,12 @@ class Brain:
                 and cur in self.graph and self.graph.inferred(cur)):
             self.graph.remove_transition(cur)  # an inferred way back that led elsewhere
         if prev is not None:
-            self._learn(prev, new, t - entered_at, entry_pose)
+            # a stop timed by a soft recognition or a run-up is no measurement of the
+            # stop's delay: learning it would feed back (each stop late, the delay longer,
+            # the next stop later; stops 30-50 cm late after 4.5 h, tuning seed 1)
+            untimed = (kind == StateKind.STILL and self.decide.mode == Mode.WAIT
+                       and self.decide.stop_untimed)
+            self._learn(prev, new, None if untimed else t - entered_at, entry_pose)
         if kind.is_context:
             self.decide.release_away_from(new)
         self.state = new
@@ -324,7 +329,7 @@ class Brain:
             self._ctx_now, self._ctx_before = new, self._ctx_now
         self.decide.on_event(new, kind, prev)
 
-    def _learn(self, prev: int, new: int, delay: float,
+    def _learn(self, prev: int, new: int, delay: float | None,
                entry_pose: tuple[float, float, float]) -> None:
         """Add ``prev -> new`` to the map with its action and delay; pay pending rewards."""
         x0, y0, _ = entry_pose

@@ -65,6 +65,10 @@ class Decider(RunupRules):
         self._stopped_at: float | None = None   # odometer where the current stop began
         self._runup_fired = False               # the current approach is by run-up alone
         self._stop_by_runup = False             # ... and so is the current stop
+        # the approach is timed from entering the stop's place (not from a soft recognition
+        # or a run-up) and the run-up gate did not hold it: the stop's delay is a measurement
+        self._entry_timed = False
+        self.stop_untimed = False               # the last stop was not: learn no delay from it
 
     def lifted(self) -> None:
         self._visits.clear()
@@ -231,6 +235,7 @@ class Decider(RunupRules):
             self.heading = float(action.heading)  # type: ignore[arg-type]
         elif b.kind(tr[1]) == StateKind.STILL and b.p.approach:
             self.mode = Mode.APPROACH   # keep going until the learned time-to-stop is over
+            self._entry_timed = True
             self._approach_t0 = b.entered_at
         else:
             self.mode = Mode.WAIT
@@ -283,6 +288,7 @@ class Decider(RunupRules):
                 self.current, self.current_since = (c, a), b.t
                 # timed from the recognition, or from entering the alias (as if it were C)
                 self.mode, self._approach_t0 = Mode.APPROACH, b.entered_at if alias else b.t
+                self._entry_timed = bool(alias)
                 return
 
     def _wanted(self, name: str) -> bool:
@@ -340,7 +346,10 @@ class Decider(RunupRules):
                 delay = b.graph.delay(self.current)
                 lead = p.transitions.latency + p.stop_lead * p.dt
                 over = delay is None or b.t - self._approach_t0 >= float(delay) - lead
+            if over and self._before_runup():
+                self._entry_timed = False   # held by the run-up gate: its timing is not
             if (over or leaving or self._past_runup()) and not self._before_runup():
+                self.stop_untimed = not (over and self._entry_timed)
                 ctx = b.layer.key(self.current[1]).context
                 if ctx is not None:
                     b.layer.bind_context(ctx)  # it stops *for* this place

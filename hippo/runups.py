@@ -33,6 +33,7 @@ class RunupRules:
     _stopped_at: float | None
     _stop_by_runup: bool
     _runup_fired: bool
+    _entry_timed: bool
 
     def wait_drive(self) -> int:  # provided by the Decider
         raise NotImplementedError
@@ -115,6 +116,7 @@ class RunupRules:
                 delay = b.graph.delay((c, a))
                 self.current, self.current_since = (c, a), b.t
                 self.mode = Mode.APPROACH
+                self._entry_timed = False
                 self._approach_t0 = b.t - float(delay or 0.0)
                 self._runup_fired = True
                 return True

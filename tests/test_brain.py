@@ -313,10 +313,23 @@ def test_an_approach_does_not_end_before_the_taught_run_up():
                 return brain.odometer - brain.wait_ended_at
         return math.inf
 
+    a = brain.layer.find("place", 0)
+    stop = (a, brain.layer.find("still", context=a))
+    delay, n = brain.graph.delay(stop), brain.graph.attributes(stop)["n_delay"]
     gated = early(brain, run)
     assert gated == pytest.approx(65.0 - 5.0, abs=2.0)
+    # the gate held the stop past A's timing: no measurement of A's time-to-stop (learning
+    # it would make every later stop later)
+    run.step("A", moving=False)
+    run.step("A", moving=False)
+    assert brain.graph.count(stop) >= 3 and brain.graph.attributes(stop)["n_delay"] == n
+    assert brain.graph.delay(stop) == delay
     brain, run = taught(runup_window=0.0)      # without the anchor it stops on A's timing
+    n = brain.graph.attributes(stop)["n_delay"]
     assert early(brain, run) <= gated - 8.0
+    run.step("A", moving=False)
+    run.step("A", moving=False)
+    assert brain.graph.attributes(stop)["n_delay"] == n + 1   # ... which it learns from
 
 
 def test_only_a_wait_where_the_anchor_said_anchors_the_next_run_up():
