@@ -47,7 +47,7 @@ import numpy as np
 from hippo._checks import check_fields, check_finite, check_int, check_positive, check_range
 from hippo._threads import blas_threads
 from hippo.perception.backends import _check_device, _import_torch, _np_dtype, _num_threads
-from hippo.perception.spectral import dense_spectral_radius, spectral_radius
+from hippo.perception.spectral_radius import dense_spectral_radius, spectral_radius
 
 LeakSpec = float | Sequence[float] | np.ndarray
 

@@ -5,9 +5,9 @@ import pytest
 import scipy.sparse.linalg as sla
 
 from hippo._threads import blas_threads
-from hippo.perception import spectral
+from hippo.perception import spectral_radius as spectral
 from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
-from hippo.perception.spectral import dense_spectral_radius, spectral_radius
+from hippo.perception.spectral_radius import dense_spectral_radius, spectral_radius
 
 
 def _draw(seed: int, n: int) -> np.ndarray:
