@@ -39,6 +39,7 @@ from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
 from hippo.io import save_figure
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
+from hippo.perception.slow_pool import check_slow_pool
 from hippo.perception.unit_count import fit_for_world
 from hippo.progress import Progress
 from hippo.scenarios._common import (
@@ -81,6 +82,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--leak", type=numbers((1, None), 0.0, 1.0, lo_open=True),
                         default=(0.05, 0.15),
                         help="leak rates, one per half (default: SMC09's 0.05,0.15)")
+    parser.add_argument("--slow-pool", type=_slow_pool, default=0.0, metavar="TICKS",
+                        help="time constant of a slow pool, a leaky running mean of the "
+                             "reservoir state appended to the SFA input (default 0: off)")
     parser.add_argument("--ica-restarts", type=integer(1, 1000), default=10,
                         help="FastICA restarts, best kept without labels")
     parser.add_argument("--sfa-cutoff", type=cli_sfa_cutoff, default="1e-8",
@@ -96,6 +100,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="label-free criterion of --select")
     parser.add_argument("--figures", action=argparse.BooleanOptionalAction, default=True,
                         help="write PNGs")
+
+
+def _slow_pool(text: str) -> float:
+    try:
+        return check_slow_pool(float(text))
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def _units(text: str) -> int | str:
@@ -183,7 +194,8 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
     in_room = lab >= 0
     params = RCSFAICA.smc09(n_reservoir=neurons, leak=tuple(args.leak), seed=seed,
                             ica_restarts=min(args.ica_restarts, 3) if quick
-                            else args.ica_restarts, sfa_cutoff=sfa_cutoff(args.sfa_cutoff)).params
+                            else args.ica_restarts, sfa_cutoff=sfa_cutoff(args.sfa_cutoff),
+                            slow_pool=args.slow_pool).params
     regions = None
     sel = None
     if getattr(args, "select", False):
@@ -245,10 +257,8 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
     test_len = ticks - n_train
     run, events = _kidnapped_run(arena, rec, n_train, test_len, seed, args.rho, rooms,
                                  args.cache)
-    x_end = np.asarray(model.reservoir_.run(rec.sensors[:n_train]))[-1]
-    X = np.asarray(model.reservoir_.run(run.sensors, x0=x_end))
-    Yk = model.ica_.transform(model.sfa_.transform(
-        np.concatenate([run.sensors.astype(X.dtype), X], axis=1)))
+    # the test run continues the training run: the reservoir (and the slow pool) carry on
+    Yk = model.transform(np.concatenate([rec.sensors[:n_train], run.sensors]))[n_train:]
     lab_k = room_labels(run, rooms)
     dec_k = _nearest_centroid(Yk, cent)
     correct = (dec_k == lab_k) | (lab_k < 0)
@@ -291,6 +301,7 @@ def run(args: argparse.Namespace) -> dict:
         "seeds_note": "each seed is one generated flat, one exploration run and one reservoir",
         "units": ([r["units"] for r in rows] if args.units == "auto"
                   else args.units or 2 * args.n_rooms), "leak": list(args.leak),
+        "slow_pool": args.slow_pool,
         **{k: summary[k]["mean"] for k in keys},
         "summary": summary,
         "kidnap_unrecovered": int(sum(r["kidnap_unrecovered"] for r in rows)),

@@ -53,3 +53,17 @@ def test_rooms_select_quick(tmp_path):
     # picked and SMC09's pair, fitted alike over the sweep, both beat chance (0.5)
     assert sel["picked_accuracy"] == [run["chosen_accuracy_in_sweep"]]
     assert 0.5 < run["paper_accuracy_in_sweep"] <= 1 and 0.5 < run["chosen_accuracy_in_sweep"]
+
+
+def test_rooms_slow_pool(tmp_path):
+    """--slow-pool TICKS: the model reads the state and its running mean (twice the SFA
+    input), the value is reported, and a bad value is refused before any work."""
+    m = run_scenario("rooms", ["--quick", "--slow-pool", "100", "--no-ceiling", "--no-figures",
+                               "--out", str(tmp_path / "pool")])
+    assert m["slow_pool"] == 100.0
+    flat = m["flats"][0]
+    assert flat["kidnap_events"] >= 1
+    assert 0.5 <= m["room_cell_mean"] <= 1.0 and 0.33 < m["decoder_balanced_accuracy"] <= 1.0
+    for bad in ("0.5", "-1", "x"):
+        with pytest.raises(SystemExit):
+            run_scenario("rooms", ["--quick", "--slow-pool", bad])
