@@ -34,12 +34,11 @@ from typing import Any
 
 import numpy as np
 
-from hippo.cli_args import integer, numbers, probability
+from hippo.cli_args import integer, numbers, probability, slow_pool
 from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
 from hippo.io import save_figure
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
-from hippo.perception.slow_pool import check_slow_pool
 from hippo.perception.unit_count import fit_for_world
 from hippo.progress import Progress
 from hippo.scenarios._common import (
@@ -82,7 +81,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--leak", type=numbers((1, None), 0.0, 1.0, lo_open=True),
                         default=(0.05, 0.15),
                         help="leak rates, one per half (default: SMC09's 0.05,0.15)")
-    parser.add_argument("--slow-pool", type=_slow_pool, default=0.0, metavar="TICKS",
+    parser.add_argument("--slow-pool", type=slow_pool, default=0.0, metavar="TICKS",
                         help="time constant of a slow pool, a leaky running mean of the "
                              "reservoir state appended to the SFA input (default 0: off)")
     parser.add_argument("--ica-restarts", type=integer(1, 1000), default=10,
@@ -100,13 +99,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="label-free criterion of --select")
     parser.add_argument("--figures", action=argparse.BooleanOptionalAction, default=True,
                         help="write PNGs")
-
-
-def _slow_pool(text: str) -> float:
-    try:
-        return check_slow_pool(float(text))
-    except ValueError as exc:
-        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def _units(text: str) -> int | str:
