@@ -7,7 +7,8 @@ Three layers (SMC09 Fig. 1), only the upper two learn, one after the other:
     y_ica(t) = W_ica (y_sfa(t) - μ)                               FastICA     (eq. 8-10)
 
 (``z`` is the z-scoring learned on the training data.) With ``slow_pool = τ > 0`` SFA reads
-``[u; x; m]``, ``m`` a leaky running mean of ``[u; x]`` over ``τ`` ticks (:mod:`.slow_pool`).
+``[u; x; m]``, ``m`` a leaky running mean of ``[u; x]`` over ``τ`` ticks
+(:mod:`~hippo.perception.slow_pool`).
 The estimator follows scikit-learn: ``__init__`` only stores parameters, :meth:`RCSFAICA.fit`
 learns, fitted attributes end in ``_``, :meth:`RCSFAICA.transform` runs a whole recording
 offline from ``x(0) = 0``. For the closed loop, :meth:`RCSFAICA.step` takes one sensor vector
