@@ -5,7 +5,8 @@ e-puck wall-follows (ρ = 0.008) for ``--ticks-per-room`` × n ticks; an RC-SFA-
 SMC09's reservoir (600 neurons, leaks ``--leak``) and **2 × n SFA and ICA units** (SMC09's 4
 for two rooms, growing with the world; ``--units auto``: two per region the SFA slowness
 spectrum shows, read without labels by :mod:`hippo.perception.unit_count`) is fitted on the
-first 3/4 without labels. Analysis
+first 3/4 without labels (``--slow-pool TICKS``: SFA also reads a leaky running mean of the
+state over that many ticks, :mod:`~hippo.perception.slow_pool`). Analysis
 (labels used only here, chosen on the training part, scored on the test part):
 
 * ``room_cell_balanced_accuracy`` — for each room, the unit, threshold and sign that best
