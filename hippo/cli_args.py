@@ -189,6 +189,16 @@ def sfa_cutoff(text: str) -> float | str:
                                          "1e-8, or 'auto'") from None
 
 
+def slow_pool(text: str) -> float:
+    """A slow pool's time constant in ticks: 0 (off) or a number >= 1."""
+    from hippo.perception.slow_pool import check_slow_pool  # the command line loads lazily
+
+    try:
+        return check_slow_pool(float(text))
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(f"got {text!r}: {exc}") from None
+
+
 def _first_existing(path: Path) -> Path:
     p = path
     while not p.exists() and p != p.parent:

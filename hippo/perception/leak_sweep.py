@@ -14,6 +14,7 @@ from hippo.perception.place_cell_params import RCSFAICAParams
 from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.reservoir import Reservoir, expand_leak
 from hippo.perception.sfa import SFA, SFAMoments
+from hippo.perception.slow_pool import with_pool
 
 __all__ = ["SweepFeatures", "fit_leak_sweep", "sweep_features"]
 
@@ -23,10 +24,11 @@ _SWEEP_BATCH = 16
 
 @dataclass
 class SweepFeatures:
-    """The features ``[u; x]`` of one recording under each leak configuration of a sweep (one
-    reservoir, same weights): ``X[b]`` is ``(T', n_inputs + N)`` for ``leaks[b]``, one row per
-    reservoir update (``T' = T`` without down-sampling). :meth:`fit` fits configuration ``b``
-    on any block of rows, so a fit on a prefix equals a fit on that prefix of the recording."""
+    """The features ``[u; x]`` (``[u; x; m]`` with a slow pool) of one recording under each leak
+    configuration of a sweep (one reservoir, same weights): ``X[b]`` is ``(T', d)`` for
+    ``leaks[b]``, one row per reservoir update (``T' = T`` without down-sampling). :meth:`fit`
+    fits configuration ``b`` on any block of rows, so a fit on a prefix equals a fit on that
+    prefix of the recording."""
 
     base: RCSFAICAParams
     leaks: list[Any]
@@ -92,7 +94,8 @@ def sweep_features(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams |
     X: list[np.ndarray] = []
     for g in range(0, len(leaks), _SWEEP_BATCH):
         S = res.run(Ud, leak=A[g:g + _SWEEP_BATCH], threads=k)  # (b, T, N)
-        X.extend(np.concatenate([Ud.astype(Sb.dtype), Sb], axis=1) for Sb in S)
+        X.extend(with_pool(np.concatenate([Ud.astype(Sb.dtype), Sb], axis=1), base.slow_pool)[0]
+                 for Sb in S)
         del S
     return SweepFeatures(base, list(leaks), res, A, X)
 

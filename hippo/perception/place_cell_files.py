@@ -123,7 +123,7 @@ def _from_arrays(cls: type, a: dict[str, np.ndarray]) -> Any:
         reservoir = Reservoir.from_weights(W_in, W_res, leak,
                                            spectral_radius=p.spectral_radius,
                                            dtype=p.dtype, device=p.device)
-    d_in = n_u + (p.n_reservoir if p.use_reservoir else 0)
+    d_in = (n_u + (p.n_reservoir if p.use_reservoir else 0)) * (2 if p.slow_pool else 1)
     sfa = SFA(p.sfa_params())
     if p.sfa_expansion == "quadratic":
         sfa.pre_mean_ = arr("sfa_pre_mean", (d_in,))

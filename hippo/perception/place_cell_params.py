@@ -20,6 +20,7 @@ from hippo.perception.backends import _check_device, _np_dtype
 from hippo.perception.ica import ICAParams
 from hippo.perception.reservoir import ReservoirParams, _leak_param
 from hippo.perception.sfa import SFAParams
+from hippo.perception.slow_pool import check_slow_pool
 
 __all__ = ["ICANN09", "SMC09", "RCSFAICAParams"]
 
@@ -49,6 +50,9 @@ class RCSFAICAParams:
     n_sfa: int = 4
     sfa_cutoff: float | str = 1e-8
     sfa_expansion: str = "linear"
+    # slow pool (:mod:`hippo.perception.slow_pool`): τ in reservoir ticks of a leaky running
+    # mean of the SFA input, appended to it; 0 = off
+    slow_pool: float = 0.0
     # ICA (eq. 8-10)
     n_ica: int = 4
     ica_algorithm: str = "symmetric"
@@ -80,6 +84,7 @@ class RCSFAICAParams:
         if self.n_ica > self.n_sfa:
             raise ValueError(f"n_ica={self.n_ica} exceeds n_sfa={self.n_sfa}")
         check_int("min_fit_ticks", self.min_fit_ticks, lo=3)
+        object.__setattr__(self, "slow_pool", check_slow_pool(self.slow_pool))
         if self.input_range is not None:
             lo, hi = self.input_range
             if not lo < hi:

@@ -6,12 +6,14 @@ Three layers (SMC09 Fig. 1), only the upper two learn, one after the other:
     y_sfa(t) = W_sfaᵀ z([u(t); x(t+1)])                          linear SFA  (eq. 6-7)
     y_ica(t) = W_ica (y_sfa(t) - μ)                               FastICA     (eq. 8-10)
 
-(``z`` is the z-scoring learned on the training data.) The estimator follows scikit-learn:
-``__init__`` only stores parameters, :meth:`RCSFAICA.fit` learns, fitted attributes end in
-``_``, :meth:`RCSFAICA.transform` runs a whole recording offline from ``x(0) = 0``. For the
-closed loop, :meth:`RCSFAICA.step` takes one sensor vector per control tick and returns the
-place-cell activities; after :meth:`RCSFAICA.reset_state`, stepping through ``U`` reproduces
-``transform(U)`` to float rounding.
+(``z`` is the z-scoring learned on the training data.) With ``slow_pool = τ > 0`` SFA reads
+``[u; x; m]``, ``m`` a leaky running mean of ``[u; x]`` over ``τ`` ticks
+(:mod:`~hippo.perception.slow_pool`).
+The estimator follows scikit-learn: ``__init__`` only stores parameters, :meth:`RCSFAICA.fit`
+learns, fitted attributes end in ``_``, :meth:`RCSFAICA.transform` runs a whole recording
+offline from ``x(0) = 0``. For the closed loop, :meth:`RCSFAICA.step` takes one sensor vector
+per control tick and returns the place-cell activities; after :meth:`RCSFAICA.reset_state`,
+stepping through ``U`` reproduces ``transform(U)`` to float rounding.
 
 Output scale: ICA outputs are **unit variance on the training data** (``output_std_`` = 1), so
 units are comparable with each other and ICANN09's "responds ≥ 4.5" reads as 4.5 training
@@ -59,6 +61,7 @@ from hippo.perception.place_cell_params import ICANN09, SMC09, RCSFAICAParams
 from hippo.perception.resample import Decimator, hold
 from hippo.perception.reservoir import Reservoir
 from hippo.perception.sfa import SFA, SFAMoments, chunk_bounds
+from hippo.perception.slow_pool import SlowPool, with_pool
 
 __all__ = [
     "FORMAT",
@@ -158,14 +161,28 @@ class RCSFAICA(ParamsEstimator):
                 "or disconnected sensors carry no information about place")
 
     def features(self, U: np.ndarray, *, downsampled: bool = False) -> np.ndarray:
-        """SFA input ``[u(t); x(t+1)]`` for a recording ``U`` (at the down-sampled rate),
-        from ``x(0) = 0``. Set ``downsampled=True`` if ``U`` is already down-sampled."""
+        """SFA input ``[u(t); x(t+1)]`` (and its slow pool ``m(t)`` with ``slow_pool``) for a
+        recording ``U`` (at the down-sampled rate), from ``x(0) = 0``, ``m(-1) = 0``. Set
+        ``downsampled=True`` if ``U`` is already down-sampled."""
         U = self._check_U(U)
         Ud = U if downsampled else self._decimator().offline(U)
-        if self.reservoir_ is None:
-            return Ud
-        X = self.reservoir_.run(Ud)
-        return np.concatenate([Ud.astype(X.dtype), X], axis=1)
+        if self.reservoir_ is not None:
+            X = self.reservoir_.run(Ud)
+            Ud = np.concatenate([Ud.astype(X.dtype), X], axis=1)
+        return with_pool(Ud, self.params.slow_pool)[0]
+
+    def _chunk(self, Ud: np.ndarray, t0: int, t1: int, state: tuple | None,
+               out: np.ndarray | None = None) -> tuple[np.ndarray, tuple]:
+        """Features of ``Ud[t0:t1]`` (into ``out`` if given) continuing from ``state`` (the
+        reservoir state and the pool's, None: zeros); returns them and the state at the end."""
+        res = self.reservoir_
+        x0, m0 = state or (None, None)
+        S = res.run(Ud[t0:t1], x0=x0)
+        Z = np.concatenate([Ud[t0:t1].astype(res.np_dtype), S], axis=1)
+        F, m = with_pool(Z, self.params.slow_pool, m0)
+        if out is not None:
+            out[...] = F
+        return (F if out is None else out), (S[-1].copy(), m)
 
     def _decimator(self) -> Decimator:
         return Decimator(int(self.params.downsample))
@@ -206,7 +223,7 @@ class RCSFAICA(ParamsEstimator):
         Ud = self._decimator().offline(U)
         if self.reservoir_ is None or p.sfa_expansion != "linear":
             return self._fit_features(self.features(Ud, downsampled=True))
-        d = p.n_inputs + self.reservoir_.n_neurons
+        d = (p.n_inputs + self.reservoir_.n_neurons) * (2 if p.slow_pool else 1)
         if stream is None:
             stream = Ud.shape[0] * d * self.reservoir_.np_dtype().itemsize > _HOLD_BYTES
         if stream:
@@ -221,43 +238,34 @@ class RCSFAICA(ParamsEstimator):
         finished chunk to the moments (both with single-threaded BLAS). Same numbers as
         ``features`` then ``SFA.accumulate``, in about the time of the harvest alone.
 
-        Also returns the chunks ``(t0, t1, x0)`` with the reservoir state each starts from.
+        Also returns the chunks ``(t0, t1, state)`` with the state each starts from (the
+        reservoir's and the slow pool's, None: zeros).
         With ``hold=False`` the features are not kept (None is returned for them): each chunk
         lives until its moments are added, at most two chunks at a time."""
         p = self.params
         res = self.reservoir_
-        n_u = p.n_inputs
         T = Ud.shape[0]
-        d = n_u + res.n_neurons
+        d = (p.n_inputs + res.n_neurons) * (2 if p.slow_pool else 1)
         if hold:
             X = np.empty((T, d), dtype=res.np_dtype)
-            X[:, :n_u] = Ud
         w = int(p.washout)
         split = SFA(p.sfa_params()).auto_split(T - w)
         parts = [SFAMoments(d) for _ in range(1 if split is None else 2)]
         bounds = sorted({0, *(w + b for b in chunk_bounds(T - w, d, split=split,
                                                            rows=_HARVEST_CHUNK))})
-        x = None
+        state = None
         chunks = []
         with single_threaded_blas(), ThreadPoolExecutor(1) as pool:
             pending = []
             for t0, t1 in pairwise(bounds):
-                chunks.append((t0, t1, x))
-                S = res.run(Ud[t0:t1], x0=x)
-                if hold:
-                    F = X[t0:t1]
-                    F[:, n_u:] = S
-                else:
-                    F = np.empty((t1 - t0, d), dtype=res.np_dtype)
-                    F[:, :n_u] = Ud[t0:t1]
-                    F[:, n_u:] = S
-                x = S[-1].copy()
+                chunks.append((t0, t1, state))
+                F, state = self._chunk(Ud, t0, t1, state, X[t0:t1] if hold else None)
                 if t0 >= w:
                     part = parts[0 if split is None or t1 - w <= split else 1]
                     if not hold and len(pending) >= 1:  # bound the chunks alive to two
                         pending.pop(0).result()
                     pending.append(pool.submit(part.update, F))
-                del S, F
+                del F
             for job in pending:
                 job.result()
         return (X if hold else None), parts, chunks
@@ -265,21 +273,18 @@ class RCSFAICA(ParamsEstimator):
     def _fit_streamed(self, Ud: np.ndarray) -> RCSFAICA:
         """Fit without holding the state sequence (see ``fit(stream=True)``)."""
         p = self.params
-        res = self.reservoir_
-        n_u, w = p.n_inputs, int(p.washout)
+        w = int(p.washout)
         _, parts, chunks = self._harvest_summarised(Ud, hold=False)
         self.sfa_ = SFA(p.sfa_params())
-        self.sfa_._prepare_shape(Ud.shape[0] - w, n_u + res.n_neurons)
+        d = (p.n_inputs + self.reservoir_.n_neurons) * (2 if p.slow_pool else 1)
+        self.sfa_._prepare_shape(Ud.shape[0] - w, d)
         self.sfa_._solve(parts, Ud.shape[0] - w)
         # the ICA input, the only array of length T: n_sfa float32 columns (16 bytes a tick)
         Y = np.empty((Ud.shape[0] - w, int(p.n_sfa)), dtype=np.float32)
         with single_threaded_blas():  # the same chunks from the same states: the same states
-            for t0, t1, x0 in chunks:
-                if t0 < w:
-                    continue
-                F = np.concatenate([Ud[t0:t1].astype(res.np_dtype),
-                                    res.run(Ud[t0:t1], x0=x0)], axis=1)
-                Y[t0 - w:t1 - w] = self.sfa_._project(F)
+            for t0, t1, state in chunks:
+                if t0 >= w:
+                    Y[t0 - w:t1 - w] = self.sfa_._project(self._chunk(Ud, t0, t1, state)[0])
         return self._fit_slow(self.sfa_._sign(Y))
 
     def _fit_features(self, X: np.ndarray, moments: list[SFAMoments] | None = None) -> RCSFAICA:
@@ -356,10 +361,14 @@ class RCSFAICA(ParamsEstimator):
 
     # ------------------------------------------------------------------ online
     def reset_state(self) -> None:
-        """Start the online loop afresh: reservoir state 0, empty down-sampling history."""
+        """Start the online loop afresh: reservoir state 0, slow pool 0, empty down-sampling
+        history."""
         self._check_fitted()
-        if self.reservoir_ is not None:
-            self.reservoir_.reset()
+        res, tau = self.reservoir_, self.params.slow_pool
+        if res is not None:
+            res.reset()
+        d = self.params.n_inputs + (0 if res is None else res.n_neurons)
+        self._pool = SlowPool(tau, d) if tau else None
         self._dec = self._decimator()
         self._last = self._y_init.copy()
 
@@ -392,9 +401,13 @@ class RCSFAICA(ParamsEstimator):
             z = res._mirror.z
             z[: res.n_inputs] = u
             res._advance()
-            out = z @ self._R + self._r0
+            out = z @ self._R[:z.size] + self._r0
+            if self._pool is not None:
+                out += self._pool.step(z) @ self._R[z.size:]
         else:
             z = u if res is None else np.concatenate([u, res.step(u)])
+            if self._pool is not None:
+                z = np.concatenate([z, self._pool.step(z)])
             out = self._readout(z[None, :])[0]
         self._last = out
         return out.copy()

@@ -42,7 +42,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo.cli_args import integer, probability
+from hippo.cli_args import integer, probability, slow_pool
 from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
 from hippo.io import load_json, save_json, save_npz
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
@@ -119,6 +119,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--leak", type=parse_leak, default=PAPER_LEAK,
                         help="leak rates of the room-cell reservoir, one per half "
                              "(default: SMC09's 0.05,0.15)")
+    parser.add_argument("--slow-pool", type=slow_pool, default=0.0, metavar="TICKS",
+                        help="time constant of a slow pool, a leaky running mean of the "
+                             "reservoir state appended to the SFA input (default 0: off)")
     parser.add_argument("--leak-sweep", action=argparse.BooleanOptionalAction, default=False,
                         help="also fit a 4x4 grid of leak pairs and report each")
     parser.add_argument("--select", action=argparse.BooleanOptionalAction, default=False,
@@ -141,6 +144,9 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
     if args.n_sfa > args.neurons + 8:
         parser.error(f"argument --n-sfa: {args.n_sfa} exceeds the {args.neurons + 8} inputs of "
                      "SFA (--neurons + 8 sensors)")
+    if args.slow_pool and (args.faults or args.leak_sweep):
+        parser.error("argument --slow-pool: not measured with --faults or --leak-sweep (they "
+                     "read the reservoir state without the pool); leave one out")
 
 
 def _other_room_pose(arena, room: str, rng: np.random.Generator) -> tuple[float, float, float]:
@@ -264,7 +270,8 @@ def run(args: argparse.Namespace) -> dict:
                 base = RCSFAICA.smc09(n_reservoir=neurons, seed=seed, n_sfa=args.n_sfa,
                                       n_ica=args.n_ica, ica_restarts=restarts,
                                       ica_score=args.ica_score,
-                                      sfa_cutoff=sfa_cutoff(args.sfa_cutoff)).params
+                                      sfa_cutoff=sfa_cutoff(args.sfa_cutoff),
+                                      slow_pool=args.slow_pool).params
                 sel_rows.append(select_setting(
                     U, n_train, base, lambda Y, r=rooms: _room_cell_accuracy(Y, r, n_train),
                     args.select_criterion))
@@ -273,7 +280,8 @@ def run(args: argparse.Namespace) -> dict:
                 model = RCSFAICA.smc09(n_reservoir=neurons, leak=leak, seed=seed,
                                        n_sfa=args.n_sfa, n_ica=args.n_ica,
                                        ica_restarts=restarts, ica_score=args.ica_score,
-                                       sfa_cutoff=sfa_cutoff(args.sfa_cutoff))
+                                       sfa_cutoff=sfa_cutoff(args.sfa_cutoff),
+                                       slow_pool=args.slow_pool)
                 t1 = time.perf_counter()
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore", ICAConvergenceWarning)
@@ -321,6 +329,7 @@ def run(args: argparse.Namespace) -> dict:
         "ticks": ticks, "train_ticks": n_train, "test_ticks": ticks - n_train,
         "reservoir_seeds": seeds,
         "neurons": neurons, "n_sfa": args.n_sfa, "n_ica": args.n_ica, "rho": args.rho,
+        "slow_pool": args.slow_pool,
         "ica_restarts": restarts, "ica_score": args.ica_score, "sfa_cutoff": args.sfa_cutoff,
         "room_changes": int(np.sum(np.diff(rec.region.astype(int)) != 0)),
         "region_occupancy": {n: float(np.mean(rec.region == i))

@@ -13,13 +13,14 @@ def test_rooms_quick(tmp_path):
     assert (out / "metrics.json").exists() and (out / "rooms.png").exists()
     saved = json.loads((out / "metrics.json").read_text())
     assert saved["seeds"] == [0] and m["units"] == 6 and m["n_rooms"] == 3
+    assert m["slow_pool"] == 50.0
     flat = m["flats"][0]
     assert len(flat["room_cell_balanced_accuracy"]) == 3
-    # seed 0, quick (9000 ticks, 150 neurons): room cells 0.67 (chance 0.5), decoder over
-    # rooms 0.56 (chance 0.33), ceiling 0.70
-    assert 0.6 <= m["room_cell_mean"] <= 1.0
-    assert 0.45 <= m["decoder_balanced_accuracy"] <= 1.0
-    assert 0.6 <= m["ceiling_room_mean"] <= 1.0
+    # seed 0, quick (9000 ticks, 150 neurons, slow pool 50): room cells 0.73 (chance 0.5),
+    # decoder over rooms 0.76 (chance 0.33), ceiling 0.79; without the pool 0.61, 0.56, 0.70
+    assert 0.65 <= m["room_cell_mean"] <= 1.0
+    assert 0.65 <= m["decoder_balanced_accuracy"] <= 1.0
+    assert 0.65 <= m["ceiling_room_mean"] <= 1.0
     assert flat["kidnap_events"] >= 1 and m["kidnap_unrecovered"] == 0
 
 
@@ -53,3 +54,17 @@ def test_rooms_select_quick(tmp_path):
     # picked and SMC09's pair, fitted alike over the sweep, both beat chance (0.5)
     assert sel["picked_accuracy"] == [run["chosen_accuracy_in_sweep"]]
     assert 0.5 < run["paper_accuracy_in_sweep"] <= 1 and 0.5 < run["chosen_accuracy_in_sweep"]
+
+
+def test_rooms_slow_pool_off(tmp_path):
+    """--slow-pool 0: SMC09's model, the state alone (quick seed 0: room cells 0.61, decoder
+    0.56, both below the default's 0.73 and 0.76); a bad value is refused before any work."""
+    m = run_scenario("rooms", ["--quick", "--slow-pool", "0", "--no-ceiling", "--no-figures",
+                               "--out", str(tmp_path / "pool")])
+    assert m["slow_pool"] == 0.0
+    assert m["flats"][0]["kidnap_events"] >= 1
+    assert 0.55 <= m["room_cell_mean"] <= 0.65
+    assert 0.45 <= m["decoder_balanced_accuracy"] <= 0.62
+    for bad in ("0.5", "-1", "x"):
+        with pytest.raises(SystemExit):
+            run_scenario("rooms", ["--quick", "--slow-pool", bad])

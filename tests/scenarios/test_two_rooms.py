@@ -131,3 +131,16 @@ def test_two_rooms_select_quick(tmp_path):
 def test_two_rooms_select_rejects_unknown_criterion():
     with pytest.raises(SystemExit):
         run_scenario("two-rooms", ["--quick", "--select", "--select-criterion", "labels"])
+
+
+def test_two_rooms_slow_pool(tmp_path):
+    """--slow-pool: the models read the state and its running mean; a bad value, or with
+    --faults / --leak-sweep (not wired), is refused before any work."""
+    m = run_scenario("two-rooms", ["--quick", "--slow-pool", "100", "--no-figures",
+                                   "--out", str(tmp_path)])
+    assert m["slow_pool"] == 100.0
+    assert 0.6 <= m["room_cell_test_balanced_accuracy"] <= 1.0
+    for bad in (["--slow-pool", "0.5"], ["--slow-pool", "100", "--faults"],
+                ["--slow-pool", "100", "--leak-sweep"]):
+        with pytest.raises(SystemExit):
+            run_scenario("two-rooms", ["--quick", *bad])
