@@ -381,7 +381,7 @@ class StateLayer:
                 beating[units] = False
             self._evidence = np.where(beating, self._evidence + dt, 0.0)
             ready = self._evidence >= p.hold_time - 1e-9
-            if np.any(ready):
+            if ready.any():
                 new = int(self._place_ids[int(np.argmax(np.where(ready, pa, -np.inf)))])
 
         if new is not None and self.contexts is not None:

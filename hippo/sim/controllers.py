@@ -102,8 +102,9 @@ class WallFollower:
             self.side = -self.side
             self.switches += 1
         if p.speed_drift > 0:
-            self.speed = float(np.clip(self.speed * (1 + p.speed_drift * rng.standard_normal()),
-                                       p.speed_min, p.speed_max))
+            # np.clip's value on one float, without an array round trip every tick
+            self.speed = min(max(self.speed * (1 + p.speed_drift * rng.standard_normal()),
+                                 p.speed_min), p.speed_max)
         d = g.distances(obs.ir)
         side = self.side
         front = float(d[g.front].min()) if g.front.any() else math.inf

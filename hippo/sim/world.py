@@ -30,6 +30,9 @@ __all__ = ["GroundTruth", "Intervention", "Observation", "Obstacle", "World", "w
 
 _CAT_ROBOT, _CAT_WALL, _CAT_OBSTACLE = 0b001, 0b010, 0b100
 _RAY_FILTER = pymunk.ShapeFilter(mask=_CAT_WALL | _CAT_OBSTACLE)
+_ANGLE = pymunk.Body.angle.fget
+_SET_VELOCITY = pymunk.Body.velocity.fset
+_SET_ANGULAR_VELOCITY = pymunk.Body.angular_velocity.fset
 
 
 class Intervention(Protocol):
@@ -168,9 +171,11 @@ class World:
         self._omega = 0.0
 
         def drive(b: pymunk.Body, gravity: object, damping: float, dt: float) -> None:
-            a = b.angle
-            b.velocity = (self._v * math.cos(a), self._v * math.sin(a))
-            b.angular_velocity = self._omega
+            # the properties' own getter and setters (b.velocity = ... without pymunk's
+            # __setattr__ hook): the same calls into chipmunk, run every physics substep
+            a = _ANGLE(b)
+            _SET_VELOCITY(b, (self._v * math.cos(a), self._v * math.sin(a)))
+            _SET_ANGULAR_VELOCITY(b, self._omega)
 
         body.velocity_func = drive
         self.body, self._shape = body, shape
@@ -313,9 +318,9 @@ class World:
         x0, y0, h0 = self.pose
         # chipmunk integrates positions before velocities: seed the first substep's velocity
         # (velocity_func then imposes it again at every substep, after contacts are solved)
-        a = self.body.angle
-        self.body.velocity = (self._v * math.cos(a), self._v * math.sin(a))
-        self.body.angular_velocity = self._omega
+        a = _ANGLE(self.body)
+        _SET_VELOCITY(self.body, (self._v * math.cos(a), self._v * math.sin(a)))
+        _SET_ANGULAR_VELOCITY(self.body, self._omega)
         h = self.dt / self.substeps
         for _ in range(self.substeps):
             self.space.step(h)
@@ -332,15 +337,17 @@ class World:
         for iv in self._interventions:
             if iv.active:
                 iv.after_step()
-        return self._observe(odo, speed, sound)
+        # an intervention may have moved the robot after the step: then read the pose again
+        return self._observe(odo, speed, sound, None if self._interventions else (x1, y1, h1))
 
     def observe(self) -> Observation:
         """Sense without moving: the observation of a robot standing where it is (no odometry,
         not moving, no sound). Draws sensor noise like a step does; updates :attr:`truth`."""
         return self._observe(np.zeros(3), 0.0, False)
 
-    def _observe(self, odo: np.ndarray, speed: float, sound: bool) -> Observation:
-        x, y, h = self.pose
+    def _observe(self, odo: np.ndarray, speed: float, sound: bool,
+                 pose: tuple[float, float, float] | None = None) -> Observation:
+        x, y, h = self.pose if pose is None else pose
         self.truth = GroundTruth(self.t, self.tick, (x, y, h), speed)
         return Observation(self.t, self.tick, self.sense(), self.arena.zone_of(x, y), sound, odo,
                            speed > self.robot.moving_threshold)

@@ -225,8 +225,13 @@ class SpectralTiming:
         j = self._cell_index
         left = below & (j < peak[:, None])
         right = below & (j > peak[:, None])
-        lo = np.where(left, j, -1).max(axis=1) + 1
-        hi = np.where(right, j, m).min(axis=1) - 1
+        # the last such cell left of the peak and the first right of it, by argmax over the
+        # booleans (a row without one gets argmax 0, which no crossing gives: cell m - 1 is
+        # never left of the peak, cell 0 never right of it)
+        back = left[:, ::-1].argmax(axis=1)
+        lo = np.where(back == 0, 0, m - back)
+        first = right.argmax(axis=1)
+        hi = np.where(first == 0, m, first) - 1
         w = np.where((j >= lo[:, None]) & (j <= hi[:, None]), v - th[:, None], 0.0)
         total = w.sum(axis=1)
         silent = ~(vmax > 0.0)

@@ -202,9 +202,12 @@ class TransitionCells:
         w = self._w[rows]
         d = self.timing._readouts(w)
         ok = ~np.isnan(d)
-        s = np.zeros(d.size)
-        if ok.any():
-            s[ok] = np.einsum("rj,rj->r", w[ok], self.timing._tuning(d[ok]))
+        if ok.all():  # the usual case: no row to mask out
+            s = np.einsum("rj,rj->r", w, self.timing._tuning(d))
+        else:
+            s = np.zeros(d.size)
+            if ok.any():
+                s[ok] = np.einsum("rj,rj->r", w[ok], self.timing._tuning(d[ok]))
         self._delay[rows] = d
         self._strength[rows] = s
 
