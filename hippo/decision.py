@@ -223,8 +223,8 @@ class Decider(RunupRules):
                     if not moves:
                         self.mode = lost
                         return
-                    vals = np.array([1.0 if t == moves[int(b.rng.integers(len(moves)))] else 0.0
-                                     for t in out])
+                    pick = moves[int(b.rng.integers(len(moves)))]
+                    vals = np.array([float(t == pick) for t in out])
             if tr not in out or vals[out.index(tr)] < vals.max():
                 tr = out[int(np.argmax(vals))] if vals.max() > 0 else \
                     out[int(b.rng.integers(len(out)))]
@@ -347,7 +347,7 @@ class Decider(RunupRules):
                 lead = p.transitions.latency + p.stop_lead * p.dt
                 over = delay is None or b.t - self._approach_t0 >= float(delay) - lead
             if over and self._before_runup():
-                self._entry_timed = False   # held by the run-up gate: its timing is not
+                self._entry_timed = False   # held by the run-up gate: no longer the map's timing
             if (over or leaving or self._past_runup()) and not self._before_runup():
                 self.stop_untimed = not (over and self._entry_timed)
                 ctx = b.layer.key(self.current[1]).context
