@@ -346,9 +346,10 @@ class Decider(RunupRules):
                 delay = b.graph.delay(self.current)
                 lead = p.transitions.latency + p.stop_lead * p.dt
                 over = delay is None or b.t - self._approach_t0 >= float(delay) - lead
-            if over and self._before_runup():
+            gated = self._before_runup()
+            if over and gated:
                 self._entry_timed = False   # held by the run-up gate: no longer the map's timing
-            if (over or leaving or self._past_runup()) and not self._before_runup():
+            if (over or leaving or self._past_runup()) and not gated:
                 self.stop_untimed = not (over and self._entry_timed)
                 ctx = b.layer.key(self.current[1]).context
                 if ctx is not None:

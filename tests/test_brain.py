@@ -207,16 +207,18 @@ def test_a_stop_bound_to_a_place_left_long_ago_is_not_timed_from_that_old_entry(
     assert delay is None or delay < 3.0
 
 
-def test_a_drive_inhibited_by_a_wait_is_released_only_after_release_distance():
-    def after_extinction(release: float) -> tuple[Brain, Run]:
-        brain, run = make(release_distance=release)
-        for _ in range(3):
-            run.trial(delay=3.0)
-        brain.drives.set_level("sound", 1.0)
-        run.trial(delay=None)                 # the wait ends by non-occurrence: inhibited
-        assert brain.drives.is_inhibited("sound")
-        return brain, run
+def after_extinction(release: float) -> tuple[Brain, Run]:
+    """Three rewarded trials, then one whose wait ends by non-occurrence: "sound" inhibited."""
+    brain, run = make(release_distance=release)
+    for _ in range(3):
+        run.trial(delay=3.0)
+    brain.drives.set_level("sound", 1.0)
+    run.trial(delay=None)                 # the wait ends by non-occurrence: inhibited
+    assert brain.drives.is_inhibited("sound")
+    return brain, run
 
+
+def test_a_drive_inhibited_by_a_wait_is_released_only_after_release_distance():
     brain, run = after_extinction(0.0)
     run.ticks(15, "B", moving=True)           # a place the stop is not one move from
     assert not brain.drives.is_inhibited("sound")
@@ -379,16 +381,7 @@ def test_a_new_move_infers_its_way_back_which_experience_confirms_or_forgets():
 
 
 def test_a_kidnap_keeps_the_drives_a_wait_holds_and_a_new_trial_releases_them():
-    def held() -> tuple[Brain, Run]:
-        brain, run = make(release_distance=60.0)
-        for _ in range(3):
-            run.trial(delay=3.0)
-        brain.drives.set_level("sound", 1.0)
-        run.trial(delay=None)                 # the wait ends by non-occurrence: inhibited
-        assert brain.drives.is_inhibited("sound")
-        return brain, run
-
-    brain, run = held()
+    brain, run = after_extinction(60.0)
     brain.lifted(keep_drives=True)             # carried: no drive satisfied, none renewed
     assert brain.drives.is_inhibited("sound")
     run.ticks(30, "B", moving=True)            # 30 cm from where it was put
@@ -398,7 +391,7 @@ def test_a_kidnap_keeps_the_drives_a_wait_holds_and_a_new_trial_releases_them():
     assert brain.drives.is_inhibited("sound")
     run.ticks(15, "C", moving=True)            # C entered at 65 cm: released
     assert not brain.drives.is_inhibited("sound")
-    brain, run = held()
+    brain, run = after_extinction(60.0)
     brain.lifted()                             # a new trial: released at once
     assert not brain.drives.is_inhibited("sound")
 
