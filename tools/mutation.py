@@ -43,7 +43,9 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/timing/": ["tests/timing"],
     "hippo/cognitive_map/": ["tests/cognitive_map"],
     "hippo/perception/sfa.py": ["tests/perception/test_sfa.py"],
+    "hippo/perception/sfa_moments.py": ["tests/perception/test_sfa.py"],
     "hippo/perception/ica.py": ["tests/perception/test_ica.py"],
+    "hippo/perception/ica_scores.py": ["tests/perception/test_ica.py"],
     "hippo/perception/reservoir.py": ["tests/perception/test_reservoir.py"],
     "hippo/perception/states.py": ["tests/perception/test_states.py"],
 }
@@ -261,7 +263,8 @@ def run(modules: list[str], tests: list[str], work: Path, sample: int | None, se
 NEURAL_MODULES = [
     *(f"hippo/timing/{m}.py" for m in
       ("nlms", "non_occurrence", "spectral", "chain", "trials", "transitions")),
-    "hippo/perception/sfa.py", "hippo/perception/ica.py", "hippo/perception/reservoir.py",
+    "hippo/perception/sfa.py", "hippo/perception/sfa_moments.py", "hippo/perception/ica.py",
+    "hippo/perception/ica_scores.py", "hippo/perception/reservoir.py",
     "hippo/perception/states.py",
     *(f"hippo/cognitive_map/{m}.py" for m in
       ("actions", "drives", "graph", "graphml", "localise", "planner", "quality", "synthetic")),

@@ -24,7 +24,8 @@ from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
 from hippo.perception.resample import Decimator
 from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
-from hippo.perception.sfa import SFA, SFAMoments, SFAParams
+from hippo.perception.sfa import SFA, SFAParams
+from hippo.perception.sfa_moments import SFAMoments
 from hippo.perception.states import StateEvent, StateKey, StateLayer, StateLayerParams
 
 __all__ = [

@@ -17,10 +17,10 @@ Additions beyond the papers:
 * ``n_restarts`` random initialisations, the best kept by an **unsupervised** score of the
   training outputs (``"kurtosis"``: Σ|excess kurtosis|, the objective the cube non-linearity
   climbs; ``"sparseness"``: Σ(1 - E|s|); ``"slowness"``: minus the smallest Δ(s_i) = ⟨ṡ_i²⟩,
-  i.e. prefer the rotation with the slowest single unit). ICA on the same SFA outputs lands in
-  different local optima, so restarts are cheap insurance; they run on parallel threads
-  (``workers``), with the same result as one after the other; scores within ``tol`` (relative)
-  of each other tie, and the earlier restart is kept;
+  i.e. prefer the rotation with the slowest single unit; :mod:`~hippo.perception.ica_scores`).
+  ICA on the same SFA outputs lands in different local optima, so restarts are cheap
+  insurance; they run on parallel threads (``workers``), with the same result as one after the
+  other; scores within ``tol`` (relative) of each other tie, and the earlier restart is kept;
 * whitening is skipped when the input is already white (SFA outputs are, on their training data);
 * the expectations are sums over **chunks** of ``_CHUNK`` samples, each whitened when it is
   used: the fit holds no array of the input's length besides the input itself (which may be
@@ -29,11 +29,16 @@ Additions beyond the papers:
 
 Outputs are unit-variance on the data the ICA was fitted on (``output_std_`` = 1), so the
 ICANN09 threshold "responds ≥ 4.5" means 4.5 training standard deviations.
+
+A fitted FastICA saves and loads its own state (:meth:`FastICA.to_arrays` /
+:meth:`FastICA.from_arrays`, :meth:`FastICA.save` / :meth:`FastICA.load`:
+:mod:`~hippo.perception.part_files`).
 """
 
 from __future__ import annotations
 
 import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -43,8 +48,9 @@ import scipy.linalg
 from hippo._checks import check_fields, check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo._threads import parallel_map
-
-SCORES = ("kurtosis", "sparseness", "slowness")
+from hippo.perception.ica_scores import SCORES, _score_chunks
+from hippo.perception.ica_scores import score_outputs as score_outputs
+from hippo.perception.part_files import PartArrays, PartFile
 
 
 class ICAConvergenceWarning(UserWarning):
@@ -242,43 +248,20 @@ def _fastica_deflation(Z: _White, W: np.ndarray, max_iter: int, tol: float
     return out, n_iter, converged, worst
 
 
-def score_outputs(S: np.ndarray, criterion: str) -> float:
-    """Unsupervised quality of ICA outputs ``S`` (T, k), unit variance; higher is better."""
-    return _score_chunks([S], criterion)
-
-
-def _score_chunks(chunks, criterion: str) -> float:
-    """:func:`score_outputs` of the outputs given as consecutive row chunks ``(t, k)``."""
-    if criterion not in SCORES:
-        raise ValueError(f"unknown score {criterion!r}; choose from {SCORES}")
-    total, n, last = 0.0, 0, None
-    for S in chunks:
-        if criterion == "kurtosis":
-            S2 = S * S
-            part = (S2 * S2).sum(axis=0)
-        elif criterion == "sparseness":
-            part = np.abs(S).sum(axis=0)
-        else:
-            D = np.diff(S, axis=0) if last is None else np.diff(np.vstack([last, S]), axis=0)
-            part = (D * D).sum(axis=0)
-            last = S[-1:]
-        total = total + part
-        n += S.shape[0]
-    if criterion == "kurtosis":
-        return float(np.sum(np.abs(total / n - 3.0)))
-    if criterion == "sparseness":
-        return float(np.sum(1.0 - total / n))
-    return -float(np.min(total / (n - 1)))
-
-
-class FastICA(ParamsEstimator):
+class FastICA(PartFile, ParamsEstimator):
     """FastICA, cube non-linearity: ``w⁺ = E{z (wᵀz)³} - 3 E{(wᵀz)²} w`` (SMC09 eq. 8-10).
 
     Fitted attributes: ``mean_`` (d,), ``whitening_`` (d, k) with ``z = (x - mean_) @
     whitening_``, ``rotation_`` (k, k) orthogonal, ``components_`` (k, d) with ``s = (x - mean_)
     @ components_.T``, ``n_iter_``, ``converged_``, ``score_``, ``restart_scores_``,
     ``output_std_`` (ones: outputs are unit-variance on the training data).
+
+    Its saved state (:meth:`to_arrays`, :meth:`save`): ``mean``, ``whitening``, ``rotation``
+    (``components_`` is rebuilt from them bit for bit); the fit's diagnostics are not saved.
     """
+
+    FILE_FORMAT = "hippo.perception.FastICA/1"
+    _PARAMS = ICAParams
 
     def __init__(self, params: ICAParams | None = None, **overrides: Any) -> None:
         self.params = replace(params or ICAParams(), **overrides)
@@ -362,8 +345,7 @@ class FastICA(ParamsEstimator):
 
     def transform(self, X: np.ndarray) -> np.ndarray:
         """Independent components ``(T, k)`` of ``X`` ``(T, d)``."""
-        if not hasattr(self, "components_"):
-            raise NotFittedError("FastICA is not fitted yet; call fit(X) first")
+        self._check_fitted()
         X = np.asarray(X)
         if X.ndim != 2 or X.shape[1] != self.n_features_in_:
             raise ValueError(f"X must have shape (T, {self.n_features_in_}), got {X.shape}")
@@ -373,6 +355,38 @@ class FastICA(ParamsEstimator):
     def fit_transform(self, X: np.ndarray, y: None = None) -> np.ndarray:
         """``fit(X)``, then the components of ``X`` (``y`` is ignored, as in scikit-learn)."""
         return self.fit(X).transform(X)
+
+    def to_arrays(self, prefix: str = "") -> dict[str, np.ndarray]:
+        """The fitted state as arrays (copies), each key led by ``prefix``."""
+        self._check_fitted()
+        state = {"mean": self.mean_, "whitening": self.whitening_, "rotation": self.rotation_}
+        return {prefix + k: np.array(v) for k, v in state.items()}  # copies, same layout
+
+    @classmethod
+    def from_arrays(cls, params: ICAParams, arrays: Mapping[str, Any], prefix: str = "", *,
+                    n_features_in: int | None = None) -> FastICA:
+        """A fitted FastICA from :meth:`to_arrays`' output (keys led by ``prefix``), checked
+        (keys, shapes against ``params`` and the input width ``n_features_in`` if given,
+        finite, ``rotation`` orthonormal); a ``ValueError`` names the key."""
+        a = PartArrays("FastICA", arrays, prefix, ("mean", "whitening", "rotation"))
+        mean = a.get("mean", (n_features_in,))
+        d = mean.shape[0]
+        k = d if params.n_components is None else int(params.n_components)
+        if k > d:
+            raise ValueError(f"{prefix}mean has {d} values: fewer inputs than n_components={k}")
+        ica = cls(params)
+        ica.mean_, ica.whitening_ = mean, a.get("whitening", (d, k))
+        ica.rotation_ = a.get("rotation", (k, k))
+        if not np.allclose(ica.rotation_ @ ica.rotation_.T, np.eye(k), atol=1e-6):
+            raise ValueError(f"{prefix}rotation is not orthonormal (FastICA's unmixing is)")
+        ica.components_ = ica.rotation_ @ ica.whitening_.T
+        ica.n_features_in_, ica.output_std_ = d, np.ones(k)
+        ica.whitened_ = not np.array_equal(ica.whitening_, np.eye(d))
+        return ica
+
+    def _check_fitted(self) -> None:
+        if not hasattr(self, "components_"):
+            raise NotFittedError("FastICA is not fitted yet; call fit(X) first")
 
     def __repr__(self) -> str:
         p = self.params

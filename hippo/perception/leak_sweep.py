@@ -13,7 +13,8 @@ from hippo.perception.backends import _num_threads as _torch_threads
 from hippo.perception.place_cell_params import RCSFAICAParams
 from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.reservoir import Reservoir, expand_leak
-from hippo.perception.sfa import SFA, SFAMoments
+from hippo.perception.sfa import SFA
+from hippo.perception.sfa_moments import SFAMoments
 from hippo.perception.slow_pool import with_pool
 
 __all__ = ["SweepFeatures", "fit_leak_sweep", "sweep_features"]

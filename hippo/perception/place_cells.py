@@ -21,7 +21,7 @@ standard deviations. ``output_peak_`` (each unit's 99.9th percentile on the trai
 a state layer normalise activities to roughly [.., 1].
 
 Fitting runs on both cores: the reservoir is harvested chunk by chunk while a second thread
-adds each finished chunk to the SFA moments (:class:`~hippo.perception.sfa.SFAMoments`), so SFA
+adds each finished chunk to the SFA moments (:mod:`~hippo.perception.sfa_moments`), so SFA
 costs little more than the harvest; :func:`fit_leak_sweep` harvests many leak configurations
 as one batch and fits them on parallel threads.
 
@@ -60,7 +60,8 @@ from hippo.perception.place_cell_files import FORMAT, load_model, save_model
 from hippo.perception.place_cell_params import ICANN09, SMC09, RCSFAICAParams
 from hippo.perception.resample import Decimator, hold
 from hippo.perception.reservoir import Reservoir
-from hippo.perception.sfa import SFA, SFAMoments, chunk_bounds
+from hippo.perception.sfa import SFA
+from hippo.perception.sfa_moments import SFAMoments, chunk_bounds
 from hippo.perception.slow_pool import SlowPool, with_pool
 
 __all__ = [
@@ -414,16 +415,16 @@ class RCSFAICA(ParamsEstimator):
 
     # ------------------------------------------------------------------ persistence
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the fitted model to ``path`` (.npz, atomic, no pickle; see
-        :mod:`hippo.perception.place_cell_files`)."""
+        """Write the fitted model to ``path`` (.npz, atomic, no pickle): its parameters and
+        its parts' own states (:mod:`hippo.perception.place_cell_files`)."""
         return save_model(self, path)
 
     @classmethod
     def load(cls, path: str | os.PathLike) -> RCSFAICA:
         """Read a model written by :meth:`save`, trusting nothing: the format tag, the
-        parameters (checked like the constructor's), and every array's dtype, shape, finiteness
-        and consistency. A damaged file raises :class:`~hippo.io.CorruptFileError` naming the
-        problem; nothing is half-loaded."""
+        parameters (checked like the constructor's), then each part loads its own state and
+        checks it against them. A damaged file raises :class:`~hippo.io.CorruptFileError`
+        naming the problem; nothing is half-loaded."""
         return load_model(cls, path)
 
     # ------------------------------------------------------------------ misc

@@ -33,12 +33,17 @@ Two ways to drive it, with identical results (to float rounding):
 
 Conventions: ``run(U)[t]`` is the state *after* feeding ``U[t]`` (``x(t+1)`` in eq. 1); it is
 paired with ``U[t]`` to form the SFA input ``[u(t); x(t+1)]``.
+
+The weights are drawn from the parameters' seed, but a reservoir saves and loads them itself
+(:meth:`Reservoir.to_arrays` / :meth:`Reservoir.from_arrays`, :meth:`Reservoir.save` /
+:meth:`Reservoir.load`: :mod:`~hippo.perception.part_files`), so a saved model does not hang on
+the random generator's stream, and one built :meth:`~Reservoir.from_weights` is saved too.
 """
 
 from __future__ import annotations
 
 import numbers
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -46,7 +51,15 @@ import numpy as np
 
 from hippo._checks import check_fields, check_finite, check_int, check_positive, check_range
 from hippo._threads import blas_threads
-from hippo.perception.backends import _check_device, _import_torch, _np_dtype, _num_threads
+from hippo.perception.backends import (
+    _check_device,
+    _import_torch,
+    _loop_batched_np,
+    _loop_shared_np,
+    _np_dtype,
+    _num_threads,
+)
+from hippo.perception.part_files import PartArrays, PartFile
 from hippo.perception.spectral_radius import dense_spectral_radius, spectral_radius
 
 LeakSpec = float | Sequence[float] | np.ndarray
@@ -123,39 +136,6 @@ def expand_leak(leak: LeakSpec, n_neurons: int) -> np.ndarray:
     return out
 
 
-def _loop_shared_np(drive: np.ndarray, M: np.ndarray, x: np.ndarray, states: np.ndarray) -> None:
-    """``states[t] = tanh(drive[t] + states[t-1] @ M)``, shapes (T, B, N), (N, N), (B, N)."""
-    pre = np.empty_like(x)
-    for t in range(drive.shape[0]):
-        np.matmul(x, M, out=pre)
-        pre += drive[t]
-        np.tanh(pre, out=states[t])
-        x = states[t]
-
-
-def _loop_batched_np(drive: np.ndarray, W: np.ndarray, A: np.ndarray, x: np.ndarray,
-                     states: np.ndarray) -> None:
-    """B leak configurations: ``tanh(A ⊙ (x @ W_resᵀ + drive[t]) + (1 - A) ⊙ x)``.
-
-    ``drive`` is ``W_in u`` (T, B or 1, N), ``A`` (B, N), ``x`` (B, N), ``states`` (B, T, N). The
-    states are kept as columns, ``W_res @ xᵀ`` (with OpenBLAS on 2 threads and B = 16, about
-    12 % faster per tick than ``x @ W_resᵀ``), and written straight in the returned layout.
-    """
-    xT = np.ascontiguousarray(x.T)
-    AT = np.ascontiguousarray(A.T)
-    omaT = 1.0 - AT
-    pre = np.empty_like(xT)
-    tmp = np.empty_like(xT)
-    for t in range(drive.shape[0]):
-        np.matmul(W, xT, out=pre)
-        pre += drive[t].T
-        pre *= AT
-        np.multiply(omaT, xT, out=tmp)
-        pre += tmp
-        np.tanh(pre, out=xT)
-        states[:, t] = xT.T
-
-
 @dataclass
 class _StepMirror:
     """numpy copy of the folded weights used by :meth:`Reservoir.step`."""
@@ -165,7 +145,7 @@ class _StepMirror:
     pre: np.ndarray  # (N,): pre-activation buffer
 
 
-class Reservoir:
+class Reservoir(PartFile):
     """Leaky ESN, SMC09 eq. 1: ``x(t+1) = tanh((1-a) x(t) + a (W_in u(t) + W_res x(t)))``.
 
     Parameters
@@ -184,7 +164,13 @@ class Reservoir:
     W_res : numpy (N, N)       recurrent weights at the requested spectral radius
     leak : numpy (N,)          per-neuron leak rates ``a``
     state : numpy (N,)         current state of the online loop (:meth:`step`)
+
+    Its saved state (:meth:`to_arrays`, :meth:`save`) is ``W_in``, ``W_res`` and ``leak``; the
+    float type and the device are chosen again at :meth:`load`, as at construction.
     """
+
+    FILE_FORMAT = "hippo.perception.Reservoir/1"
+    _PARAMS = ReservoirParams
 
     def __init__(self, params: ReservoirParams | None = None, *, dtype: str = "float32",
                  device: str = "cpu") -> None:
@@ -223,6 +209,33 @@ class Reservoir:
                                       else tuple(leak_vec.tolist()), input_weight=0.0,
                                       input_prob=0.0)
         self._setup(W_in, W_res, leak_vec, dtype, device)
+        return self
+
+    def to_arrays(self, prefix: str = "") -> dict[str, np.ndarray]:
+        """The weights ``W_in`` (N, n_u), ``W_res`` (N, N), ``leak`` (N,) (float64 copies), each
+        key led by ``prefix``."""
+        return {f"{prefix}W_in": np.array(self.W_in), f"{prefix}W_res": np.array(self.W_res),
+                f"{prefix}leak": np.array(self.leak)}
+
+    @classmethod
+    def from_arrays(cls, params: ReservoirParams, arrays: Mapping[str, Any], prefix: str = "",
+                    *, dtype: str = "float32", device: str = "cpu") -> Reservoir:
+        """A reservoir with the weights of :meth:`to_arrays` (keys led by ``prefix``), checked:
+        every key present and known, shapes (N, n_u), (N, N), (N,) from ``params``, finite,
+        the leak equal to ``params.leak`` and the spectral radius to ``params.spectral_radius``
+        (to 1e-6 relative). Raises ``ValueError`` naming the key."""
+        a = PartArrays("Reservoir", arrays, prefix, ("W_in", "W_res", "leak"))
+        N, n_u = int(params.n_neurons), int(params.n_inputs)
+        W_in, W_res, leak = a.get("W_in", (N, n_u)), a.get("W_res", (N, N)), a.get("leak", (N,))
+        if not np.array_equal(leak, expand_leak(params.leak, N)):
+            raise ValueError(f"{prefix}leak does not match the parameters' leak {params.leak}")
+        rho, want = spectral_radius(W_res), float(params.spectral_radius)
+        if not abs(rho - want) <= 1e-6 * max(1.0, want):
+            raise ValueError(f"{prefix}W_res has spectral radius {rho:.6g}, its parameters say "
+                             f"{want}")
+        self = cls.__new__(cls)
+        self.params = params
+        self._setup(W_in, W_res, leak, dtype, device)
         return self
 
     def _setup(self, W_in: np.ndarray, W_res: np.ndarray, leak: np.ndarray, dtype: str,

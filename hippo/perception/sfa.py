@@ -26,12 +26,17 @@ slow directions are fast on new data).
 Derivatives are first differences per sample, ``ẋ(t) = x(t+1) - x(t)``, so Δ is in 1/sample².
 
 The data enter only through their moments (mean, ``Σ x xᵀ``, ``Σ ẋ ẋᵀ``), accumulated chunk by
-chunk in float64 by :class:`SFAMoments` (so a float32 recording is never copied whole, and
-``RCSFAICA.fit`` can summarise reservoir states while the reservoir is still running).
+chunk in float64 by :class:`~hippo.perception.sfa_moments.SFAMoments` (so a float32 recording is
+never copied whole, and ``RCSFAICA.fit`` can summarise reservoir states while the reservoir is
+still running).
+
+A fitted SFA saves and loads its own state (:meth:`SFA.to_arrays` / :meth:`SFA.from_arrays`,
+:meth:`SFA.save` / :meth:`SFA.load`: :mod:`~hippo.perception.part_files`).
 """
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from itertools import pairwise
 from typing import Any
@@ -42,6 +47,8 @@ import scipy.linalg
 from hippo._checks import check_fields, check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo._threads import single_threaded_blas
+from hippo.perception.part_files import PartArrays, PartFile
+from hippo.perception.sfa_moments import SFAMoments, chunk_bounds
 
 _AUTO_CANDIDATES = tuple(10.0 ** -k for k in range(3, 13))
 
@@ -77,104 +84,6 @@ def quadratic_expansion(Z: np.ndarray) -> np.ndarray:
     return np.concatenate([Z, Z[..., i] * Z[..., j]], axis=-1)
 
 
-#: rows per chunk when accumulating moments: bounds the float64 working copies to ~16 MB
-_CHUNK_VALUES = 2_000_000
-
-
-def chunk_bounds(T: int, d: int, *, split: int | None = None, rows: int | None = None) -> list[int]:
-    """Row boundaries ``[0, ..., T]`` of the chunks in which a ``(T, d)`` series is accumulated
-    (``rows`` per chunk, by default ~2 million values; ``split``, when given, is a boundary)."""
-    rows = int(rows) if rows else max(256, _CHUNK_VALUES // max(d, 1))
-    b = set(range(0, T, rows)) | {T}
-    if split is not None:
-        b.add(int(split))
-    return sorted(b)
-
-
-class SFAMoments:
-    """Running sums of a time series, fed in consecutive chunks: all that SFA needs of the data.
-
-    After ``update(X_1)``, ``update(X_2)``, … (rows in time order, each chunk continuing the
-    previous one) it holds ``n`` samples, their ``mean``, the centred ``scatter``
-    ``Σ (x - mean)(x - mean)ᵀ`` and the derivative scatter ``diff_scatter = Σ ẋ ẋᵀ`` over the
-    ``n_diff = n - 1`` first differences, including those across chunk boundaries. Chunks are
-    centred on their own mean and combined with Chan, Golub & LeVeque's (1979) pairwise update, so
-    a large mean does not cancel the variance; differences are taken in float64 before any
-    centring. Feeding one chunk or many gives the same sums to rounding.
-
-    This lets a reservoir be harvested and summarised chunk by chunk (``RCSFAICA.fit`` overlaps
-    the two), and keeps only chunk-sized float64 copies in memory.
-    """
-
-    def __init__(self, n_features: int) -> None:
-        d = int(n_features)
-        if d < 1:
-            raise ValueError(f"n_features must be >= 1, got {n_features}")
-        self.n = 0
-        self.mean = np.zeros(d)
-        self.scatter = np.zeros((d, d))
-        self.n_diff = 0
-        self.diff_scatter = np.zeros((d, d))
-        self.first: np.ndarray | None = None
-        self.last: np.ndarray | None = None
-
-    @property
-    def n_features(self) -> int:
-        return self.mean.shape[0]
-
-    def update(self, X: np.ndarray) -> SFAMoments:
-        """Add the rows of ``X`` (k, d), which follow the rows already added."""
-        X = np.asarray(X)
-        if X.ndim != 2 or X.shape[1] != self.n_features:
-            raise ValueError(f"chunk must have shape (k, {self.n_features}), got {X.shape}")
-        if X.shape[0] == 0:
-            return self
-        chunk = SFAMoments(self.n_features)
-        Xd = np.array(X, dtype=np.float64)            # own float64 copy, centred in place below
-        D = np.diff(Xd, axis=0)
-        chunk.diff_scatter, chunk.n_diff = D.T @ D, D.shape[0]
-        chunk.first, chunk.last = Xd[0].copy(), Xd[-1].copy()
-        chunk.n, chunk.mean = Xd.shape[0], Xd.mean(axis=0)
-        Xd -= chunk.mean
-        chunk.scatter = Xd.T @ Xd
-        self._absorb(chunk)
-        return self
-
-    def _absorb(self, part: SFAMoments) -> None:
-        """Append the moments of ``part``, the series that follows this one: the difference
-        across the boundary, then Chan's pairwise update of mean and scatter."""
-        if part.n == 0:
-            return
-        self.diff_scatter += part.diff_scatter
-        self.n_diff += part.n_diff
-        if self.last is not None:
-            b = part.first - self.last
-            self.diff_scatter += np.outer(b, b)
-            self.n_diff += 1
-        else:
-            self.first = part.first
-        n, k = self.n, part.n
-        delta = part.mean - self.mean
-        self.mean = self.mean + delta * (k / (n + k))
-        self.scatter += part.scatter + np.outer(delta, delta) * (n * k / (n + k))
-        self.n = n + k
-        self.last = part.last
-
-    def merged(self, later: SFAMoments) -> SFAMoments:
-        """The moments of this series followed by ``later`` (a new object)."""
-        if later.n_features != self.n_features:
-            raise ValueError("moments of different dimensions cannot be merged")
-        out = SFAMoments(self.n_features)
-        out._absorb(self)
-        out._absorb(later)
-        return out
-
-    def scatter_about(self, center: np.ndarray) -> np.ndarray:
-        """``Σ (x - center)(x - center)ᵀ``."""
-        delta = self.mean - center
-        return self.scatter + self.n * np.outer(delta, delta)
-
-
 def _whiten(C: np.ndarray, cutoff: float) -> tuple[np.ndarray, np.ndarray]:
     d, E = scipy.linalg.eigh(C, overwrite_a=False, check_finite=False, driver="evd")
     keep = d > cutoff * max(d[-1], np.finfo(float).tiny)
@@ -188,7 +97,7 @@ def _slow(S: np.ndarray, A: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]
     return lam, S @ V
 
 
-class SFA(ParamsEstimator):
+class SFA(PartFile, ParamsEstimator):
     """Linear (or quadratic) SFA: ``y = Wᵀ (x - μ)/σ`` with ``A W = B W Λ`` (SMC09 eq. 6-7).
 
     Fitted attributes: ``mean_``, ``scale_`` (z-scoring of the expanded input), ``W_``
@@ -198,7 +107,15 @@ class SFA(ParamsEstimator):
 
     Outputs on the training data are zero-mean, unit-variance, decorrelated and ordered by
     slowness; each unit's sign is chosen so that its skewness is >= 0.
+
+    Its saved state (:meth:`to_arrays`, :meth:`save`): ``mean``, ``scale``, ``W``,
+    ``slowness``, ``cutoff``, ``n_whitened`` and, for the quadratic expansion, ``pre_mean``,
+    ``pre_scale``. ``input_eigenvalues_`` and ``cutoff_scores_`` describe the fit and are
+    not saved.
     """
+
+    FILE_FORMAT = "hippo.perception.SFA/1"
+    _PARAMS = SFAParams
 
     def __init__(self, params: SFAParams | None = None, **overrides: Any) -> None:
         self.params = replace(params or SFAParams(), **overrides)
@@ -374,6 +291,56 @@ class SFA(ParamsEstimator):
             raise ValueError("affine() exists only for the linear expansion")
         M = self.W_ / self.scale_[:, None]
         return M, -(self.mean_ / self.scale_) @ self.W_
+
+    # ------------------------------------------------------------------ state
+    def to_arrays(self, prefix: str = "") -> dict[str, np.ndarray]:
+        """The fitted state as arrays (copies), each key led by ``prefix``. ``cutoff`` and
+        ``n_whitened`` are left out when unknown (a model loaded from an old file)."""
+        self._check_fitted()
+        out = {"mean": self.mean_, "scale": self.scale_, "W": self.W_,
+               "slowness": self.slowness_, "cutoff": self.cutoff_, "n_whitened": self.n_whitened_}
+        if not np.isfinite(self.cutoff_):
+            del out["cutoff"]
+        if self.n_whitened_ < 0:
+            del out["n_whitened"]
+        if self.params.expansion == "quadratic":
+            out.update(pre_mean=self.pre_mean_, pre_scale=self.pre_scale_)
+        return {prefix + k: np.array(v) for k, v in out.items()}
+
+    @classmethod
+    def from_arrays(cls, params: SFAParams, arrays: Mapping[str, Any], prefix: str = "", *,
+                    n_features_in: int | None = None) -> SFA:
+        """A fitted SFA from :meth:`to_arrays`' output (keys led by ``prefix``), checked:
+        every key present and known, shapes consistent with ``params`` (and with
+        ``n_features_in``, the input width, when given), finite, ``scale`` and ``pre_scale``
+        > 0. Raises ``ValueError`` naming the key."""
+        quad = params.expansion == "quadratic"
+        a = PartArrays("SFA", arrays, prefix, ("mean", "scale", "W", "slowness",
+                                               *(("pre_mean", "pre_scale") if quad else ())),
+                       optional=("cutoff", "n_whitened"))
+        sfa, n = cls(params), int(params.n_components)
+        if quad:
+            sfa.pre_mean_ = a.get("pre_mean", (n_features_in,))
+            d_in = sfa.pre_mean_.shape[0]
+            sfa.pre_scale_ = a.get("pre_scale", (d_in,))
+            if not (sfa.pre_scale_ > 0).all():
+                raise ValueError(f"{prefix}pre_scale must be > 0 everywhere")
+            d = d_in + d_in * (d_in + 1) // 2
+        else:
+            d = d_in = a.get("mean", (n_features_in,)).shape[0]
+        sfa.mean_, sfa.scale_ = a.get("mean", (d,)), a.get("scale", (d,))
+        if not (sfa.scale_ > 1e-12 * (1.0 + np.abs(sfa.mean_))).all():
+            raise ValueError(f"{prefix}scale must be > 0 everywhere (above 1e-12 of the "
+                             "feature's mean, as fit leaves it)")
+        sfa.W_, sfa.slowness_ = a.get("W", (d, n)), a.get("slowness", (n,))
+        sfa.cutoff_ = float(a.get("cutoff", ())) if a.has("cutoff") else float("nan")
+        if a.has("cutoff") and not 0.0 < sfa.cutoff_ < 1.0:
+            raise ValueError(f"{prefix}cutoff={sfa.cutoff_:g} must lie in (0, 1)")
+        sfa.n_whitened_ = int(a.get("n_whitened", (), "int")) if a.has("n_whitened") else -1
+        if a.has("n_whitened") and not n <= sfa.n_whitened_ <= d:
+            raise ValueError(f"{prefix}n_whitened={sfa.n_whitened_} must lie in [{n}, {d}]")
+        sfa.n_features_in_, sfa.n_expanded_ = d_in, d
+        return sfa
 
     def _check_fitted(self) -> None:
         if not hasattr(self, "W_"):
