@@ -182,7 +182,33 @@ def _damaged_model(tmp_path, key, change):
     path = _model().save(tmp_path / "m.npz")
     with np.load(path) as z:
         arrays = {k: z[k] for k in z.files}
-    arrays[key] = change(arrays[key])
+    arrays[key] = change(arrays.get(key))
+    if arrays[key] is None:  # the change deletes it
+        del arrays[key]
+    np.savez(tmp_path / "bad.npz", **arrays)
+    return tmp_path / "bad.npz"
+
+
+def _part(kind: str):
+    """A small fitted SFA, FastICA or Reservoir (cached)."""
+    if kind not in _CACHE:
+        X = np.random.default_rng(0).laplace(size=(400, 5)) @ np.random.default_rng(1).normal(
+            size=(5, 5))
+        _CACHE[kind] = {"sfa": lambda: SFA(n_components=3).fit(X),
+                        "ica": lambda: FastICA(n_components=3).fit(X),
+                        "reservoir": lambda: Reservoir(ReservoirParams(n_neurons=10))}[kind]()
+    return _CACHE[kind]
+
+
+def _damaged_part(tmp_path, kind, key, change):
+    """The saved part ``kind`` with array ``key`` changed (``change`` None: deleted)."""
+    path = _part(kind).save(tmp_path / f"{kind}.npz")
+    with np.load(path) as z:
+        arrays = {k: z[k] for k in z.files}
+    if change is None:
+        del arrays[key]
+    else:
+        arrays[key] = change(arrays.get(key))
     np.savez(tmp_path / "bad.npz", **arrays)
     return tmp_path / "bad.npz"
 
@@ -311,6 +337,55 @@ CASES: list[tuple[str, typing.Callable, type, str]] = [
     ), C, r"not a readable \.npz"),
     ("load text file", lambda p: RCSFAICA.load(
         (p / "t.npz", (p / "t.npz").write_text("hello"))[0]), C, r"not a readable \.npz"),
+    ("load extra array", lambda p: RCSFAICA.load(_damaged_model(
+        p, "stray", lambda a: np.ones(2))), C, r"unknown array\(s\) stray"),
+    ("load sfa_W missing", lambda p: RCSFAICA.load(_damaged_model(p, "sfa_W", lambda a: None)),
+     C, r"SFA state lacks array\(s\) sfa_W"),
+    ("load ica_rotation skewed", lambda p: RCSFAICA.load(_damaged_model(
+        p, "ica_rotation", lambda a: a + 0.1)), C, r"ica_rotation is not orthonormal"),
+    # --- the parts' own files (SFA, FastICA, Reservoir)
+    ("sfa save before fit", lambda p: SFA().save(p / "s.npz"), R, r"SFA is not fitted"),
+    ("sfa to_arrays before fit", lambda p: SFA().to_arrays(), R, r"SFA is not fitted"),
+    ("ica save before fit", lambda p: FastICA().save(p / "i.npz"), R, r"FastICA is not fitted"),
+    ("sfa from_arrays empty", lambda p: SFA.from_arrays(SFAParams(), {}), V,
+     r"SFA state lacks array\(s\) mean, scale, W, slowness"),
+    ("ica from_arrays sfa state", lambda p: FastICA.from_arrays(ICAParams(), _part(
+        "sfa").to_arrays()), V, r"FastICA state lacks array\(s\) whitening, rotation"),
+    ("sfa from_arrays width", lambda p: SFA.from_arrays(SFAParams(n_components=3), _part(
+        "sfa").to_arrays(), n_features_in=4), V, r"mean must have shape \(4,\)"),
+    ("sfa load missing", lambda p: SFA.load(p / "none.npz"), FileNotFoundError, r"none\.npz"),
+    ("sfa load ica file", lambda p: SFA.load(_part("ica").save(p / "i.npz")), C,
+     r"not a saved SFA \(format 'hippo\.perception\.FastICA/1'"),
+    ("ica load sfa file", lambda p: FastICA.load(_part("sfa").save(p / "s.npz")), C,
+     r"not a saved FastICA \(format 'hippo\.perception\.SFA/1'"),
+    ("reservoir load model file", lambda p: Reservoir.load(_model().save(p / "m.npz")), C,
+     r"not a saved Reservoir"),
+    ("sfa load version 2", lambda p: SFA.load(_damaged_part(
+        p, "sfa", "format", lambda a: np.array("hippo.perception.SFA/2"))), C,
+     r"format version 'hippo\.perception\.SFA/2'"),
+    ("sfa load W missing", lambda p: SFA.load(_damaged_part(p, "sfa", "W", None)), C,
+     r"bad\.npz: the SFA state lacks array\(s\) W"),
+    ("sfa load extra array", lambda p: SFA.load(_damaged_part(
+        p, "sfa", "stray", lambda a: np.ones(3))), C, r"unknown array\(s\) stray"),
+    ("sfa load W short", lambda p: SFA.load(_damaged_part(p, "sfa", "W", lambda a: a[:-1])), C,
+     r"W must have shape \(5, 3\)"),
+    ("sfa load NaN W", lambda p: SFA.load(_damaged_part(
+        p, "sfa", "W", lambda a: np.where(a == a.flat[2], np.nan, a))), C, r"W contains 1"),
+    ("sfa load scale 0", lambda p: SFA.load(_damaged_part(p, "sfa", "scale", lambda a: 0 * a)),
+     C, r"scale must be > 0"),
+    ("sfa load params unknown", lambda p: SFA.load(_damaged_part(
+        p, "sfa", "params", lambda a: np.array('{"n_components": 3, "speed": 2}'))), C,
+     r"unknown SFAParams parameter\(s\) speed"),
+    ("ica load rotation skewed", lambda p: FastICA.load(_damaged_part(
+        p, "ica", "rotation", lambda a: a + 0.1)), C, r"rotation is not orthonormal"),
+    ("ica load inf mean", lambda p: FastICA.load(_damaged_part(
+        p, "ica", "mean", lambda a: a + np.r_[np.inf, 0, 0, 0, 0])), C, r"mean contains 1"),
+    ("reservoir load leak changed", lambda p: Reservoir.load(_damaged_part(
+        p, "reservoir", "leak", lambda a: a * 0 + 0.5)), C, r"leak does not match"),
+    ("reservoir load W_res rescaled", lambda p: Reservoir.load(_damaged_part(
+        p, "reservoir", "W_res", lambda a: 2 * a)), C, r"W_res has spectral radius"),
+    ("reservoir load W_in 3-D", lambda p: Reservoir.load(_damaged_part(
+        p, "reservoir", "W_in", lambda a: a[None])), C, r"W_in must have shape \(10, 8\)"),
     # --- Reservoir, SFA, ICA
     ("reservoir n_neurons 0", lambda p: ReservoirParams(n_neurons=0), V, r"n_neurons"),
     ("reservoir radius -1", lambda p: ReservoirParams(spectral_radius=-1.0), V,

@@ -27,7 +27,10 @@ from hippo.cognitive_map import DriveParams, Drives, TransitionGraph
 from hippo.cognitive_map.synthetic import random_transition_graph
 from hippo.io import CorruptFileError
 from hippo.perception import RCSFAICA
+from hippo.perception.ica import FastICA
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
+from hippo.perception.reservoir import Reservoir, ReservoirParams
+from hippo.perception.sfa import SFA
 from hippo.sim.record import Recording, record
 
 QUICK = 25  # examples per (loader, mutation kind) in the default run
@@ -44,6 +47,11 @@ def files(tmp_path_factory) -> dict[str, tuple[Path, Callable[[Path], object]]]:
     plain = RCSFAICA(use_reservoir=False, n_sfa=3, n_ica=3, ica_restarts=1,
                      sfa_expansion="quadratic").fit(U)
     protos = PlacePrototypes(PrototypeParams(n_prototypes=6)).fit(model.transform(U))
+    X = model.features(U)  # the parts alone: SFA on the reservoir's features, ICA on SFA's
+    sfa = SFA(n_components=4).fit(X)
+    sfa_quad = SFA(n_components=3, expansion="quadratic").fit(U)
+    ica = FastICA(n_components=3, n_restarts=1).fit(sfa.transform(X))
+    res = Reservoir(ReservoirParams(n_neurons=15, leak=(0.1, 0.3), seed=2))
     g = random_transition_graph(6, 12, np.random.default_rng(0))
     for s in range(4):
         g.observe_position(s, (10.0 * s, -3.0))
@@ -64,6 +72,15 @@ def files(tmp_path_factory) -> dict[str, tuple[Path, Callable[[Path], object]]]:
     def use_protos(p: PlacePrototypes) -> None:
         y = np.zeros(p.centres_.shape[1])
         assert np.isfinite(p.step(y)).all()
+
+    def use_sfa(s: SFA) -> None:
+        assert np.isfinite(s.transform((U if s.params.expansion == "quadratic" else X)[:30])).all()
+
+    def use_ica(i: FastICA) -> None:
+        assert np.isfinite(i.transform(np.zeros((3, i.n_features_in_)))).all()
+
+    def use_reservoir(r: Reservoir) -> None:
+        assert np.isfinite(r.run(U[:20])).all() and np.isfinite(r.step(U[0])).all()
 
     def use_graph(h: TransitionGraph) -> None:
         for t in h:
@@ -88,12 +105,16 @@ def files(tmp_path_factory) -> dict[str, tuple[Path, Callable[[Path], object]]]:
         "rcsfaica": (model.save(d / "m.npz"), RCSFAICA.load, use_model),
         "rcsfaica_plain": (plain.save(d / "p.npz"), RCSFAICA.load, use_model),
         "prototypes": (protos.save(d / "proto.npz"), PlacePrototypes.load, use_protos),
+        "sfa": (sfa.save(d / "sfa.npz"), SFA.load, use_sfa),
+        "sfa_quad": (sfa_quad.save(d / "sfa_quad.npz"), SFA.load, use_sfa),
+        "ica": (ica.save(d / "ica.npz"), FastICA.load, use_ica),
+        "reservoir": (res.save(d / "res.npz"), Reservoir.load, use_reservoir),
         "recording": (rec.slice(0, 60).save(d / "rec.npz"), Recording.load, use_rec),
         "graph": (g.to_graphml(d / "g.graphml"), TransitionGraph.from_graphml, use_graph),
         "drives": (drives.save(d / "drives.json"), Drives.load, use_drives),
     }
     # the same npz contents stored uncompressed: byte flips then land in the array data
-    for name in ("rcsfaica", "prototypes", "recording"):
+    for name in ("rcsfaica", "prototypes", "recording", "sfa", "ica", "reservoir"):
         path, loader, use = out[name]
         with np.load(path, allow_pickle=False) as z:
             arrays = {k: z[k] for k in z.files}
@@ -151,7 +172,8 @@ def _mutate_bytes(blob: bytes, m) -> bytes:
 
 
 BYTE_TARGETS = ["rcsfaica", "rcsfaica_raw", "rcsfaica_plain", "prototypes", "prototypes_raw",
-                "recording", "recording_raw", "graph", "drives"]
+                "recording", "recording_raw", "graph", "drives", "sfa", "sfa_raw", "ica",
+                "ica_raw", "reservoir", "reservoir_raw"]
 
 
 def _byte_test(files, name: str, n: int) -> None:
@@ -233,7 +255,10 @@ def _params_mutations():
     keys = st.sampled_from(["n_inputs", "n_reservoir", "leak", "spectral_radius", "n_sfa",
                             "n_ica", "use_reservoir", "sfa_expansion", "downsample", "seed",
                             "dtype", "device", "input_range", "out_of_range", "washout",
-                            "not_a_param"])
+                            "not_a_param",
+                            # the parts' own parameters
+                            "n_components", "cutoff", "expansion", "algorithm", "whiten",
+                            "n_neurons", "input_weight", "input_prob"])
     return st.tuples(keys, st.one_of(_BAD_VALUES, st.integers(-3, 700),
                                      st.lists(st.floats(allow_nan=True), max_size=3)))
 
@@ -270,7 +295,8 @@ def _npz_field_test(files, name: str, n: int) -> None:
     run()
 
 
-NPZ_TARGETS = ["rcsfaica", "rcsfaica_plain", "prototypes", "recording"]
+NPZ_TARGETS = ["rcsfaica", "rcsfaica_plain", "prototypes", "recording", "sfa", "sfa_quad",
+               "ica", "reservoir"]
 
 
 @pytest.mark.parametrize("name", NPZ_TARGETS)

@@ -5,7 +5,9 @@
 * :class:`SFA` — linear (or quadratic) slow feature analysis with a whitening cutoff;
   :class:`SFAMoments` — the running sums it learns from, fed chunk by chunk.
 * :class:`FastICA` — cube-nonlinearity FastICA with restarts scored without labels.
-* :class:`RCSFAICA` — the three layers as one estimator: ``fit`` / ``transform`` / ``step``.
+* :class:`RCSFAICA` — the three layers as one estimator: ``fit`` / ``transform`` / ``step``;
+  each layer saves and loads its own state (``to_arrays`` / ``from_arrays``, ``save`` /
+  ``load``: :mod:`hippo.perception.part_files`), and ``RCSFAICA.save`` composes them.
 * :class:`PlacePrototypes` — radial-basis place cells over the RC-SFA-ICA population vector.
 * :class:`StateLayer` — the multimodal winner-take-all state layer (places, colour, sound,
   proprioception) with hysteresis.

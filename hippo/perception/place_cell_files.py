@@ -32,8 +32,6 @@ from hippo.perception.sfa import SFA
 __all__ = ["FORMAT", "load_model", "save_model"]
 
 FORMAT = "hippo.perception.RCSFAICA/1"
-_REQUIRED = ("format", "params", "sfa_mean", "sfa_scale", "sfa_W", "sfa_slowness", "ica_mean",
-             "ica_whitening", "ica_rotation", "output_std", "output_peak")
 #: the estimator's own arrays; the reservoir's keep their names, SFA's and ICA's a prefix
 _OWN = ("output_std", "output_peak")
 _RESERVOIR = ("W_in", "W_res", "leak")
@@ -61,7 +59,7 @@ def load_model(cls: type, path: str | os.PathLike) -> Any:
     > 0. A damaged file raises :class:`~hippo.io.CorruptFileError` (a ``ValueError``) naming
     the problem; nothing is half-loaded (the model is built only once every check passed).
     """
-    a = load_npz(path, required=_REQUIRED)
+    a = load_npz(path, required=("format", "params"))  # the kind first, then each part's keys
     try:
         return _from_arrays(cls, a)
     except ValueError as exc:  # a part's or the estimator's check, naming the array
