@@ -2,9 +2,10 @@
 
 For outputs ``S`` (T, k), unit variance, higher is better:
 
-* ``"kurtosis"``: Σ_i |E{s_i⁴} - 3|, the excess kurtosis the cube non-linearity climbs;
-* ``"sparseness"``: Σ_i (1 - E|s_i|);
-* ``"slowness"``: -min_i Δ(s_i), Δ(s) = ⟨ṡ²⟩ (prefer the rotation with the slowest single unit).
+* ``"kurtosis"``: ``Σ_i |E{s_i⁴} - 3|``, the excess kurtosis the cube non-linearity climbs;
+* ``"sparseness"``: ``Σ_i (1 - E|s_i|)``;
+* ``"slowness"``: ``-min_i Δ(s_i)``, ``Δ(s) = ⟨ṡ²⟩`` (prefer the rotation with the slowest
+  single unit).
 
 Each is a sum over row chunks, so a long output is scored without holding it whole.
 """

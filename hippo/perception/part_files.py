@@ -137,8 +137,11 @@ class PartFile:
 
     def save(self, path: str | os.PathLike) -> Path:
         """Write the fitted part to ``path`` (.npz, atomic, no pickle): its format tag, its
-        parameters as JSON, and :meth:`to_arrays`."""
+        parameters as JSON, and :meth:`to_arrays`. A state that would not load (parameters
+        changed by ``set_params`` after the fit) is refused with the loader's ``ValueError``
+        and nothing is written."""
         arrays = self.to_arrays()
+        type(self).from_arrays(self.params, arrays)
         return save_npz(path, {"format": np.array(self.FILE_FORMAT),
                                "params": params_json(self.params), **arrays})
 

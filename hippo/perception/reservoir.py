@@ -148,6 +148,9 @@ class _StepMirror:
 class Reservoir(PartFile):
     """Leaky ESN, SMC09 eq. 1: ``x(t+1) = tanh((1-a) x(t) + a (W_in u(t) + W_res x(t)))``.
 
+    Its saved state (:meth:`to_arrays`, :meth:`save`) is ``W_in``, ``W_res`` and ``leak``; the
+    float type and the device are chosen again at :meth:`load`, as at construction.
+
     Parameters
     ----------
     params:
@@ -164,9 +167,6 @@ class Reservoir(PartFile):
     W_res : numpy (N, N)       recurrent weights at the requested spectral radius
     leak : numpy (N,)          per-neuron leak rates ``a``
     state : numpy (N,)         current state of the online loop (:meth:`step`)
-
-    Its saved state (:meth:`to_arrays`, :meth:`save`) is ``W_in``, ``W_res`` and ``leak``; the
-    float type and the device are chosen again at :meth:`load`, as at construction.
     """
 
     FILE_FORMAT = "hippo.perception.Reservoir/1"

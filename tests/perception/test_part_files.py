@@ -155,6 +155,13 @@ def test_unfitted_parts_refuse_to_export(tmp_path):
         SFA.from_arrays(SFAParams(), {})  # the state of an unfitted SFA: nothing
 
 
+def test_a_state_that_would_not_load_is_not_saved(tmp_path):
+    sfa = _sfa().set_params(n_components=4)  # the fitted W_ has 3 columns
+    with pytest.raises(ValueError, match=r"W must have shape \(7, 4\)"):
+        sfa.save(tmp_path / "sfa.npz")
+    assert not (tmp_path / "sfa.npz").exists()
+
+
 def _bad(arrays, **change):
     out = dict(arrays)
     for k, v in change.items():
