@@ -82,6 +82,10 @@ def _from_arrays(cls: type, a: dict[str, np.ndarray]) -> Any:
     check_format(a.pop("format"), FORMAT, "an RCSFAICA model")
     p = params_from_json(RCSFAICAParams, a.pop("params"), ignore_unknown=True)
     parts = _split(a, p.use_reservoir)
+    stray = sorted(set(parts["own"]) - set(_OWN))
+    if stray:
+        raise CorruptFileError(f"unknown array(s) {', '.join(stray)[:200]}: no part of the "
+                               f"model owns them")
     reservoir = None
     if p.use_reservoir:
         reservoir = Reservoir.from_arrays(p.reservoir_params(), parts["reservoir"],
