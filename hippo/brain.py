@@ -220,7 +220,13 @@ class Brain:
                  moving: bool, dt: float) -> Perception:
         """The neural chain for one tick: state layer -> timing chain (learning never stops)."""
         ev = self.layer.step(place, colour=colour, sound=sound, moving=moving, dt=dt)
-        return Perception(ev, self.timing.step(ev.winner, dt))
+        # a stop the decider did not time by its learned delay is no measurement of it: the
+        # transition cells do not learn from it either (as the map does not, _on_event);
+        # otherwise one stop cut short re-times every later stop (deployments, tuning seed 0:
+        # a stop's delay went from 7.4 to 5.0 s over 5 h, the stops 20-30 cm early)
+        untimed = (ev.changed and self.decide.mode == Mode.WAIT and self.decide.stop_untimed
+                   and self.kind(ev.winner) == StateKind.STILL)
+        return Perception(ev, self.timing.step(ev.winner, dt, learn_event=not untimed))
 
     def step(self, obs: Observation, truth: GroundTruth | None = None) -> Tick:
         """Perceive, learn and decide for one tick. ``truth`` is read by a ground-truth place

@@ -318,14 +318,17 @@ def test_an_approach_does_not_end_before_the_taught_run_up():
     a = brain.layer.find("place", 0)
     stop = (a, brain.layer.find("still", context=a))
     delay, n = brain.graph.delay(stop), brain.graph.attributes(stop)["n_delay"]
+    timed = brain.cells.learned_delay(stop)
     gated = early(brain, run)
     assert gated == pytest.approx(65.0 - 5.0, abs=2.0)
-    # the gate held the stop past A's timing: no measurement of A's time-to-stop (learning
-    # it would make every later stop later)
+    # the gate held the stop past A's timing: no measurement of A's time-to-stop, neither
+    # for the map nor for the transition cells that time the next stop (learning it would
+    # make every later stop later)
     run.step("A", moving=False)
     run.step("A", moving=False)
     assert brain.graph.count(stop) >= 3 and brain.graph.attributes(stop)["n_delay"] == n
     assert brain.graph.delay(stop) == delay
+    assert brain.cells.learned_delay(stop) == pytest.approx(timed, abs=1e-6)
     brain, run = taught(runup_window=0.0)      # without the anchor it stops on A's timing
     n = brain.graph.attributes(stop)["n_delay"]
     assert early(brain, run) <= gated - 8.0

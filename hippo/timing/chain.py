@@ -58,10 +58,12 @@ class TimingChain:
         chain.spectral, chain.cells, chain.nonocc = spectral, cells, nonocc
         return chain
 
-    def step(self, winner: int, dt: float) -> TimingStep:
-        """Advance the chain by ``dt`` with ``winner`` the current state (learning never stops)."""
+    def step(self, winner: int, dt: float, *, learn_event: bool = True) -> TimingStep:
+        """Advance the chain by ``dt`` with ``winner`` the current state (learning never
+        stops; ``learn_event=False``: a change of winner this tick teaches no delay, see
+        :meth:`TransitionCells.step`)."""
         battery = self.spectral.step(winner, dt)
-        readouts = self.cells.step(battery, dt)
+        readouts = self.cells.step(battery, dt, learn_event=learn_event)
         omitted = self.nonocc.step(readouts, dt) if self.nonocc is not None else []
         return TimingStep(battery, readouts, omitted)
 

@@ -228,11 +228,15 @@ class TransitionCells:
         self._w[rows], _ = nlms_update(self._w[rows], cs, us, eta, p, dt)
         self._refresh(rows[learning])
 
-    def step(self, battery: BatteryState, dt: float) -> dict[Key, TransitionReadout]:
+    def step(self, battery: BatteryState, dt: float, *, learn_event: bool = True
+             ) -> dict[Key, TransitionReadout]:
         """One tick: learn from the battery state, then read out the winner's transitions.
 
         ``battery`` is what :meth:`SpectralTiming.step` returned this tick. Returns the
         readouts of the transitions out of the current winner (also in ``self.readouts``).
+        ``learn_event=False``: an event this tick is no measurement of its delay (a stop the
+        agent timed by other means): it is recruited, but no weight out of the state left
+        learns from it.
         """
         if not isinstance(battery, BatteryState):
             raise ValueError(f"battery must be a BatteryState, got {type(battery).__name__}")
@@ -269,7 +273,7 @@ class TransitionCells:
             if winner != a and (a, winner) not in self._index:
                 self._recruit((a, winner))
             rows = self._out.get(a)
-            if rows is not None:
+            if rows is not None and learn_event:
                 self._learn(rows, battery.previous_activity, winner, dt)
         else:
             rows = self._out.get(winner)

@@ -244,3 +244,25 @@ def test_a_delay_beyond_the_battery_says_how_to_time_it():
         cells.step(timing.step(0, DT), DT)
     with pytest.warns(DelayRangeWarning, match=r"raise SpectralParams.mu_max to time it$"):
         cells.step(timing.step(1, DT), DT)
+
+
+def test_an_event_marked_unmeasured_teaches_no_delay_but_is_recruited():
+    # 0 -> 1 learned at 7 s; then 0 -> 1 after only 3 s (a stop the agent made by other
+    # means than its timing), marked as no measurement
+    def event(target: int, learn_event: bool) -> tuple[TransitionCells, np.ndarray, float]:
+        timing, cells, _, _ = learned(7.0)
+        w, delay = cells.weights((0, 1)).copy(), cells.learned_delay((0, 1))
+        for _ in range(15):                                  # 3 s in state 0
+            cells.step(timing.step(0, DT), DT)
+        cells.step(timing.step(target, DT), DT, learn_event=learn_event)
+        return cells, w, delay
+
+    cells, w, delay = event(1, learn_event=False)
+    # the stay in state 0 learns only m^US's 1e-18 tail (the trial's end state 99 -> 0)
+    assert np.allclose(cells.weights((0, 1)), w, rtol=0.0, atol=1e-12)
+    assert cells.learned_delay((0, 1)) == pytest.approx(delay, abs=1e-9)
+    cells, w, delay = event(1, learn_event=True)   # measured: one event re-times it at once
+    assert np.abs(cells.weights((0, 1)) - w).max() > 0.1
+    assert cells.learned_delay((0, 1)) == pytest.approx(3.0, abs=0.2)
+    cells, _, _ = event(2, learn_event=False)      # a new transition: known, not timed
+    assert (0, 2) in cells.transitions and not cells.weights((0, 2)).any()
