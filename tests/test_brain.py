@@ -337,6 +337,32 @@ def test_an_approach_does_not_end_before_the_taught_run_up():
     assert brain.graph.attributes(stop)["n_delay"] == n + 1   # ... which it learns from
 
 
+def test_a_stop_omitted_before_its_stillness_can_be_perceived_waits_for_it():
+    # the robot has just stopped for A (held past A's learned time-to-stop), and the
+    # non-occurrence neurons 'omit' the stop at this very tick
+    def wait_after(omitted_at: float, checked_at: float) -> Mode:
+        brain, _ = taught()
+        a = brain.layer.find("place", 0)
+        stop = (a, brain.layer.find("still", context=a))
+        d = brain.decide
+        d.mode, d.current, d._waiting_on = Mode.WAIT, stop, stop
+        d._wait_since, d._omitted_early, t0 = brain.t, False, brain.t
+        for t in np.arange(t0, t0 + checked_at + 1e-9, brain.p.dt):
+            brain.t = float(t)
+            brain.non_occurrence = [stop] if abs(t - t0 - omitted_at) < 1e-9 else []
+            d.check_wait()
+            if d.mode != Mode.WAIT:
+                break
+        return d.mode
+
+    grace = taught()[0].decide.still_grace
+    assert grace == pytest.approx(0.8)        # (proprio_ticks 2 + 2) ticks of 0.2 s
+    assert wait_after(0.0, 0.6) == Mode.WAIT  # omitted at once: the stillness is not due yet
+    assert wait_after(0.0, 1.0) != Mode.WAIT  # ... and still no stillness after the grace
+    assert wait_after(1.0, 1.0) != Mode.WAIT  # an omission after the grace ends it at once
+    assert wait_after(5.0, 2.0) == Mode.WAIT  # no omission: the wait goes on
+
+
 def test_only_a_wait_where_the_anchor_said_anchors_the_next_run_up():
     # two checkpoints a -> b -> a: b's run-up 50 cm after a's wait, a's 100 cm after b's
     brain = Brain(Stub(), drives={"a": DriveParams(), "b": DriveParams()},
