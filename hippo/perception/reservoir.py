@@ -106,10 +106,9 @@ def expand_leak(leak: LeakSpec, n_neurons: int) -> np.ndarray:
     is ``(0.05, 0.15)``); a vector of length ``n_neurons`` is used as is. Every rate must lie in
     (0, 1].
     """
-    arr = np.atleast_1d(np.asarray(leak, dtype=float))
+    arr = np.atleast_1d(check_finite("leak", leak))
     if arr.ndim != 1 or arr.size == 0:
         raise ValueError(f"leak must be a number or a 1-D sequence, got shape {arr.shape}")
-    check_finite("leak", arr)
     if np.any(arr <= 0) or np.any(arr > 1):
         raise ValueError(f"leak rates must lie in (0, 1], got {arr.min():g}..{arr.max():g}")
     if arr.size == n_neurons:
@@ -121,6 +120,12 @@ def expand_leak(leak: LeakSpec, n_neurons: int) -> np.ndarray:
     for value, idx in zip(arr, groups):
         out[idx] = value
     return out
+
+
+def _host(a: Any) -> Any:
+    """A torch tensor (on any device, even one that requires grad) as a numpy array; anything
+    else as it is."""
+    return a.detach().cpu().numpy() if hasattr(a, "detach") else a
 
 
 def _loop_shared_np(drive: np.ndarray, M: np.ndarray, x: np.ndarray, states: np.ndarray) -> None:
@@ -275,9 +280,7 @@ class Reservoir:
             raise ValueError(f"backend must be 'auto', 'numpy' or 'torch', got {backend!r}")
         if backend == "numpy" and self.device != "cpu":
             raise ValueError(f"backend='numpy' runs on the CPU, but device={self.device!r}")
-        if hasattr(U, "detach"):  # a torch tensor
-            U = U.detach().cpu().numpy()
-        U = np.asarray(U, dtype=self.np_dtype)
+        U = np.asarray(_host(U), dtype=self.np_dtype)
         if U.ndim not in (2, 3) or U.shape[-1] != self.n_inputs:
             raise ValueError(f"U must have shape (T, {self.n_inputs}) or (B, T, {self.n_inputs}),"
                              f" got {U.shape}")
@@ -303,8 +306,7 @@ class Reservoir:
         # ---- initial state
         x = np.zeros((B, N), dtype=self.np_dtype)
         if x0 is not None:
-            x0 = np.asarray(x0.detach().cpu() if hasattr(x0, "detach") else x0,
-                            dtype=self.np_dtype)
+            x0 = np.asarray(_host(x0), dtype=self.np_dtype)
             if x0.shape[-1] != N or x0.ndim > 2:
                 raise ValueError(f"x0 must have shape ({N},) or (B, {N}), got {x0.shape}")
             x = x + x0

@@ -108,6 +108,13 @@ def test_expand_leak():
         expand_leak(0.0, 4)
     with pytest.raises(ValueError, match="leak"):
         expand_leak((0.1,) * 5, 4)
+    # a full-length vector is used as is, as float64 (integer rates too)
+    full = expand_leak([1, 1, 1], 3)
+    assert full.dtype == np.float64 and np.array_equal(full, [1.0, 1.0, 1.0])
+    # a matrix of rates, or none at all, is not a leak specification
+    for bad in (np.full((2, 2), 0.1), ()):
+        with pytest.raises(ValueError, match=r"^leak must be a number or a 1-D sequence"):
+            expand_leak(bad, 4)
 
 
 def test_bad_parameters_and_inputs():
@@ -185,6 +192,8 @@ def test_step_continues_eq1_from_a_given_state():
     np.testing.assert_allclose(r.step(u), np.tanh(a * (r.W_in @ u)), atol=1e-12)
     with pytest.raises(ValueError, match="x0"):
         r.reset(np.zeros(r.n_neurons + 1))
+    with pytest.raises(ValueError, match=r"^x0 contains 1 non-finite"):
+        r.reset(np.r_[np.nan, np.zeros(r.n_neurons - 1)])
 
 
 def test_the_paper_presets():
@@ -233,5 +242,38 @@ def test_from_weights_keeps_the_weights_and_records_their_radius():
     np.testing.assert_allclose(s.run(U), r.run(U), atol=1e-5)
     one = Reservoir.from_weights(np.ones((1, 2)), np.full((1, 1), 0.5), 0.5, dtype="float64")
     assert one.params.leak == 0.5
+    # the recorded parameters describe the weights: 2 inputs, 1 neuron
+    assert (one.params.n_inputs, one.params.n_neurons) == (2, 1) == (one.n_inputs, one.n_neurons)
     # one neuron: x(1) = tanh(0.5 * 0 + 0.5 * (u1 + u2 + 0.5 * 0))
     assert one.run(np.array([[0.2, 0.4]]))[0, 0] == pytest.approx(np.tanh(0.3))
+
+
+def test_from_weights_names_non_finite_weights():
+    r = Reservoir(small(leak=0.2), dtype="float64")
+    for name, (W_in, W_res) in {"W_in": (r.W_in + np.nan, r.W_res),
+                                "W_res": (r.W_in, r.W_res + np.nan)}.items():
+        with pytest.raises(ValueError, match=rf"^{name} contains \d+ non-finite"):
+            Reservoir.from_weights(W_in, W_res, 0.2)
+
+
+@pytest.mark.parametrize("dtype", ["float32", "float64"])
+@pytest.mark.parametrize("leak", [None, np.array([[0.05, 0.15], [0.3, 0.3]])])
+def test_a_run_continues_bit_for_bit_from_its_last_state(dtype, leak):
+    # run(U[k:], x0=run(U[:k])[-1]) continues eq. 1 from x(k): the same bits as the whole run,
+    # in the reservoir's own float type (a resumed robot is the robot that never stopped).
+    # Chunks of 2 ticks or more: for a 1-tick chunk BLAS takes its matrix-vector path for
+    # W_in u, which rounds differently (1 ulp)
+    r = Reservoir(small(), dtype=dtype)
+    U = _inputs(120)
+    whole = r.run(U, leak=leak)
+    for k in (2, 50):
+        first = r.run(U[:k], leak=leak)
+        rest = r.run(U[k:], x0=first[..., -1, :], leak=leak)
+        assert np.array_equal(np.concatenate([first, rest], axis=-2), whole)
+    assert whole.dtype == np.dtype(dtype)
+
+
+def test_the_numpy_backend_is_the_default_on_the_cpu():
+    r = Reservoir(small())
+    U = _inputs(50)
+    assert np.array_equal(r.run(U, backend="numpy"), r.run(U))
