@@ -29,7 +29,9 @@ def _sources(T=5000, seed=0):
 def test_separates_sources(algorithm):
     S, A = _sources()
     X = S @ A.T + 5.0
-    ica = FastICA(algorithm=algorithm, seed=1).fit(X)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ICAConvergenceWarning)  # converged: no warning
+        ica = FastICA(algorithm=algorithm, seed=1).fit(X)
     assert amari_index(ica.components_ @ A) < 0.05
     assert ica.converged_ and ica.n_iter_ >= 1
     Y = ica.transform(X)
@@ -91,8 +93,12 @@ def test_bad_input():
         ICAParams(algorithm="parallel")
     with pytest.raises(ValueError, match="non-finite"):
         FastICA().fit(np.full((10, 2), np.nan))
-    with pytest.raises(ValueError, match="shape"):
-        FastICA(seed=0).fit(S).transform(S[:, :2])
+    ica = FastICA(seed=0).fit(S)
+    for bad in (S[:, :2], S[:, 0]):
+        with pytest.raises(ValueError, match=r"^X must have shape \(T, 4\), got"):
+            ica.transform(bad)
+    with pytest.raises(ValueError, match=r"^whiten=False needs n_components equal to the input"):
+        FastICA(whiten=False, n_components=2).fit(S)
 
 
 def test_restarts_on_threads_give_the_same_result():
@@ -191,13 +197,16 @@ def test_degenerate_input_directions_are_refused():
     assert FastICA(seed=0, n_components=4).fit(X).components_.shape == (4, 5)
 
 
-def test_symmetric_decorrelation_is_scipy_eigh_bit_for_bit():
+def test_symmetric_decorrelation_is_scipy_eigh_bit_for_bit(monkeypatch):
     # the direct LAPACK call gives the numbers of scipy.linalg.eigh, and (W Wᵀ)^{-1/2} W is
     # orthonormal
     import scipy.linalg
 
+    import hippo.perception.ica as ica_mod
     from hippo.perception.ica import _sym_decorrelate
 
+    # from an empty memo of LAPACK work sizes (a new process), then from the memo
+    monkeypatch.setattr(ica_mod, "_SYEVR_LWORK", {})
     rng = np.random.default_rng(1)
     for k in (1, 2, 4, 8, 70):
         for _ in range(5):
@@ -207,3 +216,147 @@ def test_symmetric_decorrelation_is_scipy_eigh_bit_for_bit():
             out = _sym_decorrelate(W)
             assert np.array_equal(out, ref)
             assert np.allclose(out @ out.T, np.eye(k), atol=1e-8)
+
+
+def test_the_newton_step_size_halves_after_25_iterations_without_a_new_low():
+    from hippo.perception.ica import _NewtonStepSize
+
+    # a change that never falls: the first one is the low, then every 25 iterations without a
+    # new low halve mu (the count restarting), down to 1/64
+    size, mus = _NewtonStepSize(), []
+    for _ in range(400):
+        size.update(1.0)
+        mus.append(size.mu)
+    halved = [i + 1 for i in range(1, 400) if mus[i] < mus[i - 1]]
+    assert halved == [26, 51, 76, 101, 126, 151]
+    assert [mus[i - 1] for i in halved] == [1 / 2, 1 / 4, 1 / 8, 1 / 16, 1 / 32, 1 / 64]
+    # a falling change keeps mu = 1
+    size = _NewtonStepSize()
+    for change in 0.99 ** np.arange(300):
+        size.update(change)
+    assert size.mu == 1.0
+    # a new low restarts the count: 24 stalls, a new low, 24 stalls keep mu; one more halves it
+    size = _NewtonStepSize()
+    for change in [1.0] * 25 + [0.5] + [0.9] * 24:
+        size.update(change)
+    assert size.mu == 1.0
+    size.update(0.9)
+    assert size.mu == 0.5
+
+
+def _white(T=2000, seed=3):
+    """White 4-D input (k, T) mixed from the test sources."""
+    S, A = _sources(T=T, seed=seed)
+    Xc = S @ A.T
+    Xc = Xc - Xc.mean(axis=0)
+    d, E = np.linalg.eigh(Xc.T @ Xc / T)
+    return (Xc @ E / np.sqrt(d)).T
+
+
+def test_the_symmetric_solver_runs_fixed_point_steps_then_newton_steps():
+    # max_iter = 6: min(200, 6 // 2) = 3 steps of the papers' fixed point
+    # W+ = E{g(Wz) zᵀ} - 3 diag(E{(Wz)²}) W, then 3 stabilised Newton steps (mu = 1)
+    # W+ = W - (E{g(y) zᵀ} - β W) / (3 E{y²} - β), β = E{y⁴}; each decorrelated (W Wᵀ)^-1/2 W
+    from hippo.perception.ica import _fastica_symmetric, _White
+
+    z = _white()
+    T = z.shape[1]
+    W0 = np.random.default_rng(0).standard_normal((4, 4))
+
+    def sym(W):
+        s, u = np.linalg.eigh(W @ W.T)
+        return u @ np.diag(s ** -0.5) @ u.T @ W
+
+    W = sym(W0)
+    for it in range(6):
+        Y = W @ z
+        g, m2 = (Y ** 3) @ z.T / T, np.mean(Y ** 2, axis=1)
+        if it < 3:
+            W = sym(g - 3 * m2[:, None] * W)
+        else:
+            beta = np.mean(Y ** 4, axis=1)
+            W = sym(W - (g - beta[:, None] * W) / (3 * m2 - beta)[:, None])
+    got, n_iter, ok, _ = _fastica_symmetric(_White(z.T, np.zeros(4), np.eye(4)), W0, 6, 1e-300)
+    assert n_iter == 6 and not ok
+    np.testing.assert_allclose(got, W, atol=1e-9)
+
+
+def test_the_newton_step_size_counts_the_newton_iterations_only(monkeypatch):
+    # tol = 0 never converges: with max_iter = 500 the first min(200, 250) iterations are
+    # fixed-point steps, and the step size sees the changes of the other 300; on Gaussian
+    # input the change stalls, so mu is halved
+    import hippo.perception.ica as ica_mod
+
+    seen = []
+
+    class Recorded(ica_mod._NewtonStepSize):
+        def update(self, change):
+            super().update(change)
+            seen.append(self.mu)
+
+    monkeypatch.setattr(ica_mod, "_NewtonStepSize", Recorded)
+    z = np.random.default_rng(4).standard_normal((3, 1000))
+    W0 = np.random.default_rng(5).standard_normal((3, 3))
+    _, n_iter, ok, _ = ica_mod._fastica_symmetric(ica_mod._White(z.T, np.zeros(3), np.eye(3)),
+                                                  W0, 500, 0.0)
+    assert n_iter == 500 and not ok
+    assert len(seen) == 300 and seen[0] == 1.0 and min(seen) < 1.0
+
+
+def test_already_white_input_is_only_centred():
+    # unit covariance: whitening is skipped, the mean is still taken off
+    z = _white().T
+    a = FastICA(seed=2).fit(z)
+    b = FastICA(seed=2).fit(z + 5.0)
+    assert not a.whitened_ and not b.whitened_
+    np.testing.assert_allclose(b.mean_, 5.0, atol=1e-12)
+    np.testing.assert_allclose(b.components_, a.components_, atol=1e-8)
+    np.testing.assert_allclose(b.transform(z + 5.0), a.transform(z), atol=1e-8)
+
+
+def test_the_whitening_eigenvectors_have_their_largest_entry_positive():
+    # the documented sign convention of the whitening (an eigenvector's sign is arbitrary)
+    S, A = _sources(T=2000)
+    ica = FastICA(seed=0).fit(S @ A.T)
+    V = ica.whitening_
+    assert ica.whitened_
+    assert np.all(V[np.argmax(np.abs(V), axis=0), np.arange(V.shape[1])] > 0)
+
+
+def test_float32_input_statistics_are_taken_in_float64():
+    # the mean and covariance of a float32 recording are those of its values in float64
+    from hippo.perception.ica import _mean_cov
+
+    X = (3.0 + np.random.default_rng(6).random((3000, 4))).astype(np.float32)
+    m32, C32 = _mean_cov(X)
+    m64, C64 = _mean_cov(X.astype(np.float64))
+    assert m32.dtype == C32.dtype == np.float64
+    np.testing.assert_allclose(m32, m64, rtol=1e-13)
+    np.testing.assert_allclose(C32, C64, rtol=1e-11)
+
+
+def test_a_float32_recording_is_not_copied_whole(monkeypatch):
+    # the fit reads a float32 input chunk by chunk: its peak memory stays well below the
+    # float64 copy of the input (numpy reports its buffers to tracemalloc)
+    import tracemalloc
+
+    import hippo.perception.ica as ica_mod
+
+    monkeypatch.setattr(ica_mod, "_CHUNK", 4000)
+    S, A = _sources(T=100_000, seed=1)
+    X = (S @ A.T).astype(np.float32)
+    tracemalloc.start()
+    try:
+        FastICA(seed=0, max_iter=20, tol=1e-3).fit(X)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < X.nbytes  # a float64 copy alone is 2 * X.nbytes
+
+
+def test_two_samples_are_enough_one_is_not():
+    # the smallest fit: two samples of one input, whitened to -1 and +1
+    ica = FastICA().fit(np.array([[0.0], [1.0]]))
+    np.testing.assert_allclose(np.abs(ica.transform(np.array([[0.0], [1.0]]))), 1.0)
+    with pytest.raises(ValueError, match="at least 2 samples, got 1"):
+        FastICA().fit(np.array([[0.0]]))
