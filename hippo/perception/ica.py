@@ -126,7 +126,7 @@ def _mean_cov(X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     mean /= T
     C = np.zeros((d, d))
     for t0 in range(0, T, _CHUNK):
-        Xc = np.asarray(X[t0:t0 + _CHUNK], dtype=np.float64) - mean
+        Xc = X[t0:t0 + _CHUNK] - mean  # float64 from float32 input too (the mean is float64)
         C += Xc.T @ Xc
     return mean, C / T
 
@@ -147,7 +147,8 @@ class _White:
         self._held = self._whiten(0, self.T) if self.T <= _CHUNK else None
 
     def _whiten(self, t0: int, t1: int) -> np.ndarray:
-        return ((np.asarray(self.X[t0:t1], dtype=np.float64) - self.mean) @ self.V).T.copy()
+        # float64 from float32 input too (the mean is float64)
+        return ((self.X[t0:t1] - self.mean) @ self.V).T.copy()
 
     def __iter__(self):
         if self._held is not None:
@@ -409,8 +410,8 @@ def output_stats(ica: FastICA, Y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     col = np.empty(Y.shape[0])
     for j in range(k):
         for t0 in range(0, Y.shape[0], _OUT_CHUNK):
-            y = np.asarray(Y[t0:t0 + _OUT_CHUNK], dtype=np.float64)
-            col[t0:t0 + _OUT_CHUNK] = (y - ica.mean_) @ ica.components_[j]
+            # float64 from float32 input too (the mean is float64)
+            col[t0:t0 + _OUT_CHUNK] = (Y[t0:t0 + _OUT_CHUNK] - ica.mean_) @ ica.components_[j]
         std[j] = col.std()
         peak[j] = np.percentile(col, 99.9, overwrite_input=True)
     return std, peak

@@ -306,10 +306,10 @@ class Reservoir:
         # ---- initial state
         x = np.zeros((B, N), dtype=self.np_dtype)
         if x0 is not None:
-            x0 = np.asarray(_host(x0), dtype=self.np_dtype)
-            if x0.shape[-1] != N or x0.ndim > 2:
-                raise ValueError(f"x0 must have shape ({N},) or (B, {N}), got {x0.shape}")
-            x = x + x0
+            x0 = check_finite("x0", _host(x0))
+            if x0.shape not in ((N,), (1, N), (B, N)):
+                raise ValueError(f"x0 must have shape ({N},) or ({B}, {N}), got {x0.shape}")
+            x += x0  # (rounded to the reservoir's float type)
         if backend == "torch" or (backend == "auto" and self.device != "cpu"):
             states = self._run_torch(U, A, x, threads)
         else:

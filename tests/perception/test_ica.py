@@ -69,12 +69,16 @@ def test_restarts_keep_best_score():
     assert ica.score_ == ica.restart_scores_[first]
     for crit in ("kurtosis", "sparseness", "slowness"):
         assert np.isfinite(score_outputs(S / S.std(axis=0), crit))
+    with pytest.raises(ValueError, match=r"^unknown score 'peakiness'; choose from \("):
+        score_outputs(S, "peakiness")
 
 
 def test_convergence_warning_names_iterations():
     S, A = _sources()
     with pytest.warns(ICAConvergenceWarning, match="max_iter=2"):
         FastICA(max_iter=2, tol=1e-12).fit(S @ A.T)
+    with pytest.warns(ICAConvergenceWarning, match=r"did not converge in 3 of 3 restart\(s\)"):
+        FastICA(max_iter=2, tol=1e-12, n_restarts=3).fit(S @ A.T)
 
 
 def test_fewer_components_than_inputs():
@@ -323,13 +327,16 @@ def test_the_whitening_eigenvectors_have_their_largest_entry_positive():
     assert np.all(V[np.argmax(np.abs(V), axis=0), np.arange(V.shape[1])] > 0)
 
 
-def test_float32_input_statistics_are_taken_in_float64():
-    # the mean and covariance of a float32 recording are those of its values in float64
-    from hippo.perception.ica import _mean_cov
+@pytest.mark.parametrize("chunk", [65536, 700])
+def test_float32_input_statistics_are_taken_in_float64(monkeypatch, chunk):
+    # the mean and covariance of a float32 recording are those of its values in float64,
+    # in one piece and chunk by chunk
+    import hippo.perception.ica as ica_mod
 
+    monkeypatch.setattr(ica_mod, "_CHUNK", chunk)
     X = (3.0 + np.random.default_rng(6).random((3000, 4))).astype(np.float32)
-    m32, C32 = _mean_cov(X)
-    m64, C64 = _mean_cov(X.astype(np.float64))
+    m32, C32 = ica_mod._mean_cov(X)
+    m64, C64 = ica_mod._mean_cov(X.astype(np.float64))
     assert m32.dtype == C32.dtype == np.float64
     np.testing.assert_allclose(m32, m64, rtol=1e-13)
     np.testing.assert_allclose(C32, C64, rtol=1e-11)
@@ -360,3 +367,58 @@ def test_two_samples_are_enough_one_is_not():
     np.testing.assert_allclose(np.abs(ica.transform(np.array([[0.0], [1.0]]))), 1.0)
     with pytest.raises(ValueError, match="at least 2 samples, got 1"):
         FastICA().fit(np.array([[0.0]]))
+
+
+def test_the_symmetric_default_converges_where_deflation_wanders():
+    # two Gaussian sources span a plane with no preferred direction: deflation's unit in it
+    # has no fixed point and runs to max_iter; the symmetric default (all rows at once)
+    # converges in a few iterations
+    rng = np.random.default_rng(0)
+    T = 3000
+    S = np.column_stack([rng.laplace(size=T), rng.uniform(-1, 1, T), rng.standard_normal(T),
+                         rng.standard_normal(T)])
+    X = S @ rng.standard_normal((4, 4)).T
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ICAConvergenceWarning)
+        sym = FastICA(seed=0).fit(X)
+    assert sym.params.algorithm == "symmetric" and sym.converged_ and sym.n_iter_ < 20
+    with pytest.warns(ICAConvergenceWarning, match=r"FastICA \(deflation\) did not converge"):
+        FastICA(algorithm="deflation", seed=0).fit(X)
+
+
+def test_chunked_expectations_equal_the_one_array_form_in_the_newton_phase(monkeypatch):
+    # tol 1e-300, max_iter 40: 20 fixed-point steps, then 20 stabilised Newton steps, whose
+    # β = E{y g(y)} is summed over the chunks too
+    import hippo.perception.ica as ica_mod
+
+    S, A = _sources(T=5000, seed=4)
+    X = S @ A.T
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ICAConvergenceWarning)
+        whole = FastICA(seed=0, tol=1e-300, max_iter=40).fit(X)
+        monkeypatch.setattr(ica_mod, "_CHUNK", 700)
+        chunked = FastICA(seed=0, tol=1e-300, max_iter=40).fit(X)
+    np.testing.assert_allclose(chunked.components_, whole.components_, rtol=1e-6, atol=1e-8)
+
+
+@pytest.mark.parametrize("chunk", [65536, 700])
+def test_output_stats_are_the_std_and_99_9th_percentile_of_the_outputs(monkeypatch, chunk):
+    # on float32 input too, in float64, in one piece and chunk by chunk
+    import hippo.perception.ica as ica_mod
+
+    monkeypatch.setattr(ica_mod, "_OUT_CHUNK", chunk)
+    S, A = _sources(T=3000, seed=5)
+    X = S @ A.T
+    ica = FastICA(seed=0).fit(X)
+    for Xi in (X, X.astype(np.float32)):
+        out = ica.transform(Xi.astype(np.float64))
+        std, peak = ica_mod.output_stats(ica, Xi)
+        np.testing.assert_allclose(std, out.std(axis=0), rtol=1e-12)
+        np.testing.assert_allclose(peak, np.percentile(out, 99.9, axis=0), rtol=1e-12)
+
+
+def test_fit_transform_is_fit_then_transform():
+    S, A = _sources(T=1000)
+    X = S @ A.T
+    np.testing.assert_array_equal(FastICA(seed=3).fit_transform(X),
+                                  FastICA(seed=3).fit(X).transform(X))

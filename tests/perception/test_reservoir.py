@@ -277,3 +277,18 @@ def test_the_numpy_backend_is_the_default_on_the_cpu():
     r = Reservoir(small())
     U = _inputs(50)
     assert np.array_equal(r.run(U, backend="numpy"), r.run(U))
+
+
+def test_a_bad_initial_state_of_a_run_is_named():
+    # x0 is (N,) or (B, N) for B streams / leak configurations, and finite
+    r = Reservoir(small())
+    U = np.stack([_inputs(10, seed=s) for s in range(3)])
+    for bad in (0.5, np.zeros(61), np.zeros((2, 60)), np.zeros((1, 1, 60))):
+        with pytest.raises(ValueError, match=r"^x0 must have shape \(60,\) or \(3, 60\), got"):
+            r.run(U, x0=bad)
+    with pytest.raises(ValueError, match=r"^x0 contains 1 non-finite"):
+        r.run(U[0], x0=np.r_[np.inf, np.zeros(59)])
+    # one state for every stream, or one each
+    x0 = np.random.default_rng(0).uniform(-0.5, 0.5, 60)
+    np.testing.assert_array_equal(r.run(U, x0=x0), r.run(U, x0=np.tile(x0, (3, 1))))
+    np.testing.assert_array_equal(r.run(U, x0=x0[None]), r.run(U, x0=x0))
