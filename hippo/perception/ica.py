@@ -162,8 +162,7 @@ def _moments(Z: _White, W: np.ndarray, beta: bool = False
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """``E{g(Wz) zᵀ}`` (k, k), ``E{(Wz)²}`` (k,) and, with ``beta``, ``E{y g(y)}`` (k,) for
     ``g(y) = y³``: sums over the chunks of ``Z``, divided by T."""
-    k = W.shape[0]
-    gz, y2, yg = np.zeros((k, Z.V.shape[1])), np.zeros(k), np.zeros(k) if beta else None
+    gz, y2, yg = np.zeros(W.shape), np.zeros(len(W)), np.zeros(len(W))
     for z in Z:
         Y = W @ z
         Y2 = Y * Y
@@ -294,7 +293,8 @@ class FastICA(ParamsEstimator):
     Fitted attributes: ``mean_`` (d,), ``whitening_`` (d, k) with ``z = (x - mean_) @
     whitening_``, ``rotation_`` (k, k) orthogonal, ``components_`` (k, d) with ``s = (x - mean_)
     @ components_.T``, ``n_iter_``, ``converged_``, ``score_``, ``restart_scores_``,
-    ``output_std_`` (ones: outputs are unit-variance on the training data).
+    ``output_std_`` (ones: outputs are unit-variance on the training data), ``whitened_``
+    (False when the whitening was skipped: ``whitening_`` is the identity).
     """
 
     def __init__(self, params: ICAParams | None = None, **overrides: Any) -> None:

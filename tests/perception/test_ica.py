@@ -54,8 +54,8 @@ def test_skips_whitening_for_white_input():
     d, E = np.linalg.eigh(Xc.T @ Xc / len(X))
     Z = Xc @ E / np.sqrt(d)
     ica = FastICA(seed=0).fit(Z)
-    assert not ica.whitened_
-    assert FastICA(seed=0).fit(X).whitened_
+    assert ica.whitened_ is False and np.array_equal(ica.whitening_, np.eye(4))
+    assert FastICA(seed=0).fit(X).whitened_ is True
 
 
 def test_restarts_keep_best_score():
@@ -75,8 +75,9 @@ def test_restarts_keep_best_score():
 
 def test_convergence_warning_names_iterations():
     S, A = _sources()
-    with pytest.warns(ICAConvergenceWarning, match="max_iter=2"):
+    with pytest.warns(ICAConvergenceWarning, match="max_iter=2") as record:
         FastICA(max_iter=2, tol=1e-12).fit(S @ A.T)
+    assert record[0].filename == __file__  # the warning points at the caller's line
     with pytest.warns(ICAConvergenceWarning, match=r"did not converge in 3 of 3 restart\(s\)"):
         FastICA(max_iter=2, tol=1e-12, n_restarts=3).fit(S @ A.T)
 
@@ -163,6 +164,13 @@ def test_the_stabilised_newton_phase_keeps_the_separation():
         ica = FastICA(seed=1, tol=1e-300, max_iter=120).fit(X)
     assert not ica.converged_ and ica.n_iter_ == 120
     assert amari_index(ica.components_ @ A) < 0.05
+
+
+def test_transform_before_fit_says_to_fit():
+    from hippo._estimator import NotFittedError
+
+    with pytest.raises(NotFittedError, match=r"^FastICA is not fitted yet; call fit\(X\) first"):
+        FastICA().transform(np.zeros((3, 2)))
 
 
 def test_transform_names_non_finite_input():

@@ -292,3 +292,30 @@ def test_a_bad_initial_state_of_a_run_is_named():
     x0 = np.random.default_rng(0).uniform(-0.5, 0.5, 60)
     np.testing.assert_array_equal(r.run(U, x0=x0), r.run(U, x0=np.tile(x0, (3, 1))))
     np.testing.assert_array_equal(r.run(U, x0=x0[None]), r.run(U, x0=x0))
+
+
+def test_the_numpy_tick_loop_runs_on_threads_blas_threads(monkeypatch):
+    # run(threads=n) sets the BLAS thread count for the tick loop and gives the caller's count
+    # back; threads=None leaves it as it is
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    def blas():
+        return {i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"}
+
+    r = Reservoir(small())
+    U = _inputs(10)
+    real_tanh, seen = np.tanh, []
+
+    def tanh(*args, **kw):
+        seen.append(blas())
+        return real_tanh(*args, **kw)
+
+    with threadpool_limits(2, user_api="blas"):
+        if blas() != {2}:
+            pytest.skip("no BLAS that threadpoolctl can set to 2 threads")
+        monkeypatch.setattr(np, "tanh", tanh)
+        for leak in (None, np.array([[0.05, 0.15], [0.3, 0.3]])):
+            for threads, inside in ((1, {1}), (None, {2})):
+                seen.clear()
+                r.run(U, leak=leak, threads=threads)
+                assert seen == [inside] * 10 and blas() == {2}
