@@ -1,5 +1,6 @@
 """FastICA: separates non-Gaussian sources, seeded, sign-normalised, restarts, warnings."""
 
+import os
 import warnings
 
 import numpy as np
@@ -75,11 +76,19 @@ def test_restarts_keep_best_score():
 
 def test_convergence_warning_names_iterations():
     S, A = _sources()
-    with pytest.warns(ICAConvergenceWarning, match="max_iter=2") as record:
+    with pytest.warns(ICAConvergenceWarning, match="max_iter=2"):
         FastICA(max_iter=2, tol=1e-12).fit(S @ A.T)
-    assert record[0].filename == __file__  # the warning points at the caller's line
     with pytest.warns(ICAConvergenceWarning, match=r"did not converge in 3 of 3 restart\(s\)"):
         FastICA(max_iter=2, tol=1e-12, n_restarts=3).fit(S @ A.T)
+
+
+def test_the_convergence_warning_points_at_the_caller_s_line():
+    if "MUTANT_UNDER_TEST" in os.environ:
+        pytest.skip("under mutmut, whose trampoline adds a frame between the caller and fit")
+    S, A = _sources(T=1000)
+    with pytest.warns(ICAConvergenceWarning) as record:
+        FastICA(max_iter=2, tol=1e-12).fit(S @ A.T)
+    assert record[0].filename == __file__
 
 
 def test_fewer_components_than_inputs():
