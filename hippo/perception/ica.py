@@ -315,7 +315,11 @@ class FastICA(ParamsEstimator):
         if T < 2:
             raise ValueError(f"ICA needs at least 2 samples, got {T}")
         self.n_features_in_ = d
-        self.mean_, C = _mean_cov(X)
+        with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused below
+            self.mean_, C = _mean_cov(X)
+        if not np.isfinite(C).all():
+            raise ValueError(f"X is too large: its covariance overflows float64 (|X| up to "
+                             f"{np.max(np.abs(X)):.3g}); rescale it")
         # white: unit covariance (the input is centred with mean_ either way)
         white = np.max(np.abs(C - np.eye(d))) < 1e-6 and k == d
         if p.whiten is False or (p.whiten == "auto" and white):

@@ -37,6 +37,7 @@ def test_separates_sources(algorithm):
     assert ica.converged_ and ica.n_iter_ >= 1
     Y = ica.transform(X)
     np.testing.assert_allclose(Y.std(axis=0), 1.0, atol=1e-6)
+    assert np.array_equal(ica.output_std_, np.ones(4))
     assert np.all(Y.max(axis=0) >= -Y.min(axis=0))  # peak response positive
 
 
@@ -427,11 +428,15 @@ def test_output_stats_are_the_std_and_99_9th_percentile_of_the_outputs(monkeypat
     S, A = _sources(T=3000, seed=5)
     X = S @ A.T
     ica = FastICA(seed=0).fit(X)
-    for Xi in (X, X.astype(np.float32)):
-        out = ica.transform(Xi.astype(np.float64))
-        std, peak = ica_mod.output_stats(ica, Xi)
-        np.testing.assert_allclose(std, out.std(axis=0), rtol=1e-12)
-        np.testing.assert_allclose(peak, np.percentile(out, 99.9, axis=0), rtol=1e-12)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ICAConvergenceWarning)
+        two = FastICA(seed=0, n_components=2).fit(X)  # 2 outputs of 4 inputs
+    for model in (ica, two):
+        for Xi in (X, X.astype(np.float32)):
+            out = model.transform(Xi.astype(np.float64))
+            std, peak = ica_mod.output_stats(model, Xi)
+            np.testing.assert_allclose(std, out.std(axis=0), rtol=1e-12)
+            np.testing.assert_allclose(peak, np.percentile(out, 99.9, axis=0), rtol=1e-12)
 
 
 def test_fit_transform_is_fit_then_transform():
@@ -439,3 +444,36 @@ def test_fit_transform_is_fit_then_transform():
     X = S @ A.T
     np.testing.assert_array_equal(FastICA(seed=3).fit_transform(X),
                                   FastICA(seed=3).fit(X).transform(X))
+
+
+def test_a_later_restart_must_beat_the_kept_one_by_tol_relative():
+    # tol = 0.1: every restart's score (about 12) is within 10 % of the first one's, which is
+    # kept; a threshold of tol / score (not relative) would have taken a later restart
+    S, A = _sources(T=3000)
+    ica = FastICA(seed=1, n_restarts=8, tol=0.1).fit(S @ A.T)
+    first, later = ica.restart_scores_[0], ica.restart_scores_[1:]
+    assert np.all(later <= first * 1.1) and ica.score_ == first
+    assert later.max() > first + 0.1 / first
+
+
+def test_one_chunk_of_input_is_whitened_once(monkeypatch):
+    # up to _CHUNK samples the whitened input is computed once and held for every iteration
+    import hippo.perception.ica as ica_mod
+
+    calls = []
+    real = ica_mod._White._whiten
+
+    def whiten(self, t0, t1):
+        calls.append((t0, t1))
+        return real(self, t0, t1)
+
+    monkeypatch.setattr(ica_mod._White, "_whiten", whiten)
+    S, A = _sources(T=2000)
+    ica = FastICA(seed=0, n_restarts=2).fit(S @ A.T)
+    assert ica.n_iter_ > 1 and calls == [(0, 2000)]
+
+
+def test_an_input_whose_covariance_overflows_is_named():
+    S, A = _sources(T=1000)
+    with pytest.raises(ValueError, match=r"^X is too large: its covariance overflows float64"):
+        FastICA(seed=0).fit(S @ A.T * 1e160)
