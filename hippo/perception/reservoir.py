@@ -235,9 +235,7 @@ class Reservoir:
         self.np_dtype = _np_dtype(dtype)
         self.dtype = self.np_dtype.__name__
         self.device = _check_device(device)
-        self.W_in = np.asarray(W_in, dtype=float)
-        self.W_res = np.asarray(W_res, dtype=float)
-        self.leak = np.asarray(leak, dtype=float)
+        self.W_in, self.W_res, self.leak = W_in, W_res, leak  # float64 from both callers
         self._W_in_run = np.ascontiguousarray(self.W_in, dtype=self.np_dtype)
         self._W_res_run = np.ascontiguousarray(self.W_res, dtype=self.np_dtype)
         a = self.leak
@@ -295,7 +293,7 @@ class Reservoir:
         if leak is None:
             A = self.leak[None, :]
         elif np.ndim(leak) == 2:
-            A = np.stack([expand_leak(row, N) for row in np.asarray(leak, dtype=float)])
+            A = np.stack([expand_leak(row, N) for row in leak])
         else:
             A = expand_leak(leak, N)[None, :]
         B = max(B_in, A.shape[0])

@@ -93,6 +93,7 @@ def test_batched_equals_unbatched():
     assert Xb.shape == (3, 200, 60)
     for b in range(3):
         np.testing.assert_allclose(Xb[b], r.run(U[b]), atol=1e-12)
+    np.testing.assert_allclose(r.run(U[:2]), Xb[:2], atol=1e-12)  # two streams
     # leak sweep: one stream, B leak configurations over the same W_res
     leaks = np.array([[0.05, 0.15], [0.11, 0.14], [1.0, 1.0]])
     Xs = r.run(U[0], leak=leaks)
@@ -131,8 +132,13 @@ def test_bad_parameters_and_inputs():
         r.run(np.full((10, 8), np.nan))
     with pytest.raises(ValueError, match="shape"):
         r.step(np.zeros(7))
-    with pytest.raises(ValueError, match="NaN"):
+    with pytest.raises(ValueError, match=r"^u \(the sensor vector\) contains NaN or inf"):
         r.step(np.array([np.nan] + [0.0] * 7))
+    # a value beyond float32's range is inf to a float32 reservoir: refused, not run
+    with (pytest.warns(RuntimeWarning, match="overflow"),
+          pytest.raises(ValueError, match=r"^u \(the sensor vector\) contains NaN or inf")):
+        r.step(np.full(8, 1e39))
+    assert np.all(np.isfinite(Reservoir(small(), dtype="float64").step(np.full(8, 1e39))))
 
 
 def test_numpy_dtype_and_shape():
@@ -213,6 +219,8 @@ def test_the_paper_presets():
 def test_repr_shows_the_leak_rates():
     assert "leak=0.05/0.15," in repr(Reservoir(small()))
     assert "leak=0.3," in repr(Reservoir(small(leak=0.3)))
+    # at most the first four distinct rates
+    assert "leak=0.1/0.2/0.3/0.4," in repr(Reservoir(small(leak=(0.1, 0.2, 0.3, 0.4, 0.5, 0.6))))
 
 
 def test_non_finite_input_sequence_is_named():
@@ -304,18 +312,65 @@ def test_the_numpy_tick_loop_runs_on_threads_blas_threads(monkeypatch):
 
     r = Reservoir(small())
     U = _inputs(10)
-    real_tanh, seen = np.tanh, []
+    real_tanh, real_matmul, seen, drive = np.tanh, np.matmul, [], []
 
     def tanh(*args, **kw):
         seen.append(blas())
         return real_tanh(*args, **kw)
 
+    def matmul(a, b, **kw):
+        if not seen:  # before the first tick: the input drive W_in u(t), on one thread always
+            drive.append(blas())
+        return real_matmul(a, b, **kw)
+
     with threadpool_limits(2, user_api="blas"):
         if blas() != {2}:
             pytest.skip("no BLAS that threadpoolctl can set to 2 threads")
         monkeypatch.setattr(np, "tanh", tanh)
+        monkeypatch.setattr(np, "matmul", matmul)
         for leak in (None, np.array([[0.05, 0.15], [0.3, 0.3]])):
-            for threads, inside in ((1, {1}), (None, {2})):
+            for kw, inside in (({"threads": 1}, {1}), ({"threads": None}, {2}), ({}, {1}),
+                               ({"threads": 2}, {2})):
                 seen.clear()
-                r.run(U, leak=leak, threads=threads)
+                drive.clear()
+                r.run(U, leak=leak, **kw)  # the default is one thread
                 assert seen == [inside] * 10 and blas() == {2}
+                assert drive[:1] == [{1}]
+
+
+def test_leak_rates_given_as_a_list_or_array_are_kept_as_a_tuple_of_floats():
+    # the parameters are frozen and hashable: a list or 1-D array of rates becomes a tuple
+    for given in ([0.05, 0.15], np.array([0.05, 0.15]), [1, 1]):
+        p = ReservoirParams(n_neurons=4, leak=given)
+        assert isinstance(p.leak, tuple) and all(type(v) is float for v in p.leak)
+        assert p.leak == tuple(float(v) for v in given)
+        hash(p)
+    assert ReservoirParams(leak=0.3).leak == 0.3
+    with pytest.raises(ValueError, match="leak"):  # a bool is not a rate
+        ReservoirParams(n_neurons=4, leak=[True, 0.5])
+
+
+def test_leak_specifications_name_their_faults():
+    with pytest.raises(ValueError, match=r"^leak contains 1 non-finite"):
+        expand_leak((0.1, np.nan), 4)
+    for field in ("n_inputs", "n_neurons"):
+        with pytest.raises(ValueError, match=rf"^ReservoirParams\.{field}\b"):
+            ReservoirParams(**{field: 0})
+
+
+def test_from_weights_refuses_weights_that_do_not_fit_and_records_the_leak():
+    r = Reservoir(small(), dtype="float64")
+    with pytest.raises(ValueError, match=r"^W_in \(N, n_u\) and W_res \(N, N\) do not fit"):
+        Reservoir.from_weights(r.W_in[:, 0], r.W_res, 0.2)  # a vector, not (N, n_u)
+    s = Reservoir.from_weights(r.W_in, r.W_res, (0.05, 0.15))
+    assert s.params.leak == (0.05,) * 30 + (0.15,) * 30  # per neuron
+    np.testing.assert_array_equal(s.leak, r.leak)
+
+
+def test_streams_and_leak_configurations_that_do_not_broadcast_are_named():
+    r = Reservoir(small())
+    U = np.stack([_inputs(10, seed=s) for s in range(2)])
+    leaks = np.array([[0.05, 0.15], [0.1, 0.1], [0.3, 0.3]])
+    with pytest.raises(ValueError, match=r"^2 input streams and 3 leak configurations do not "
+                                         r"broadcast"):
+        r.run(U, leak=leaks)

@@ -110,9 +110,16 @@ def test_torch_tensors_that_require_grad_are_accepted():
     np.testing.assert_array_equal(r.run(Ut, x0=x0t), r.run(U, x0=x0))
 
 
-def test_the_numpy_backend_is_refused_on_a_cuda_device(monkeypatch):
-    # the check comes before any CUDA work, so a CUDA device is pretended here
+def test_on_a_cuda_device_auto_is_torch_and_numpy_is_refused(monkeypatch):
+    # the choice comes before any CUDA work, so a CUDA device is pretended here and the torch
+    # loop replaced by a recorder
     monkeypatch.setattr(torch.cuda, "is_available", lambda: True)
     r = Reservoir(params(), device="cuda")
     with pytest.raises(ValueError, match=r"^backend='numpy' runs on the CPU, but device='cuda'"):
         r.run(inputs(5), backend="numpy")
+    used = []
+    monkeypatch.setattr(r, "_run_torch", lambda U, A, x, threads: used.append(U.shape)
+                        or np.zeros((1, U.shape[1], 80), np.float32))
+    r.run(inputs(5))
+    r.run(inputs(5), backend="torch")
+    assert used == [(1, 5, 8), (1, 5, 8)]
