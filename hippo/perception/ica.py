@@ -21,7 +21,8 @@ Additions beyond the papers:
   ICA on the same SFA outputs lands in different local optima, so restarts are cheap
   insurance; they run on parallel threads (``workers``), with the same result as one after the
   other; scores within ``tol`` (relative) of each other tie, and the earlier restart is kept;
-* whitening is skipped when the input is already white (SFA outputs are, on their training data);
+* whitening is skipped when the input's covariance is already the identity (SFA outputs' is, on
+  their training data; the input is centred either way);
 * the expectations are sums over **chunks** of ``_CHUNK`` samples, each whitened when it is
   used: the fit holds no array of the input's length besides the input itself (which may be
   float32), so a fit on 10⁶ ticks needs the memory of one on 10⁴. Up to ``_CHUNK`` samples the
@@ -70,7 +71,7 @@ class ICAParams:
     #: random initialisations; the best by ``score`` is kept
     n_restarts: int = 1
     score: str = "kurtosis"
-    #: "auto" (skip when the input is already white), True, or False
+    #: "auto" (skip when the input's covariance is the identity), True, or False
     whiten: bool | str = "auto"
     seed: int = 0
     #: threads the restarts run on (None: the usable cores); the result does not depend on it
@@ -131,7 +132,7 @@ def _mean_cov(X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     mean /= T
     C = np.zeros((d, d))
     for t0 in range(0, T, _CHUNK):
-        Xc = np.asarray(X[t0:t0 + _CHUNK], dtype=np.float64) - mean
+        Xc = X[t0:t0 + _CHUNK] - mean  # float64 from float32 input too (the mean is float64)
         C += Xc.T @ Xc
     return mean, C / T
 
@@ -152,7 +153,8 @@ class _White:
         self._held = self._whiten(0, self.T) if self.T <= _CHUNK else None
 
     def _whiten(self, t0: int, t1: int) -> np.ndarray:
-        return ((np.asarray(self.X[t0:t1], dtype=np.float64) - self.mean) @ self.V).T.copy()
+        # float64 from float32 input too (the mean is float64)
+        return ((self.X[t0:t1] - self.mean) @ self.V).T.copy()
 
     def __iter__(self):
         if self._held is not None:
@@ -166,8 +168,7 @@ def _moments(Z: _White, W: np.ndarray, beta: bool = False
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """``E{g(Wz) zᵀ}`` (k, k), ``E{(Wz)²}`` (k,) and, with ``beta``, ``E{y g(y)}`` (k,) for
     ``g(y) = y³``: sums over the chunks of ``Z``, divided by T."""
-    k = W.shape[0]
-    gz, y2, yg = np.zeros((k, Z.V.shape[1])), np.zeros(k), np.zeros(k) if beta else None
+    gz, y2, yg = np.zeros(W.shape), np.zeros(len(W)), np.zeros(len(W))
     for z in Z:
         Y = W @ z
         Y2 = Y * Y
@@ -194,10 +195,11 @@ def _fastica_symmetric(Z: _White, W: np.ndarray, max_iter: int, tol: float
     """
     W = _sym_decorrelate(W)
     switch = min(200, max_iter // 2)
-    lim = best = np.inf
-    mu, since_best = 1.0, 0
+    lim = np.inf
+    step_size = _NewtonStepSize()
     for it in range(1, max_iter + 1):
-        if it <= switch:
+        newton = it > switch
+        if not newton:
             gz, y2, _ = _moments(Z, W)
             W1 = _sym_decorrelate(gz - 3.0 * y2[:, None] * W)
         else:
@@ -205,19 +207,33 @@ def _fastica_symmetric(Z: _White, W: np.ndarray, max_iter: int, tol: float
             denom = 3.0 * y2 - beta                   # E{g'(y)} - β = -(excess kurtosis)
             denom = np.where(np.abs(denom) < 1e-12, 1e-12, denom)
             step = (gz - beta[:, None] * W) / denom[:, None]
-            W1 = _sym_decorrelate(W - mu * step)
+            W1 = _sym_decorrelate(W - step_size.mu * step)
         lim = float(np.max(np.abs(np.abs(np.einsum("ij,ij->i", W1, W)) - 1.0)))
         W = W1
         if lim < tol:
             return W, it, True, lim
-        if it > switch:
-            if lim < best:
-                best, since_best = lim, 0
-            else:
-                since_best += 1
-                if since_best >= 25 and mu > 1 / 64:
-                    mu, since_best, best = mu / 2, 0, lim
+        if newton:
+            step_size.update(lim)
     return W, max_iter, False, lim
+
+
+class _NewtonStepSize:
+    """μ of the stabilised Newton phase: 1 at first, halved whenever the change has not
+    reached a new low for ``patience`` iterations in a row (the low then restarts from the
+    current change), never below ``floor``."""
+
+    def __init__(self, patience: int = 25, floor: float = 1 / 64) -> None:
+        self.patience, self.floor = patience, floor
+        self.mu, self.best, self.since_best = 1.0, np.inf, 0
+
+    def update(self, change: float) -> None:
+        """Count one more iteration with this ``change``."""
+        if change < self.best:
+            self.best, self.since_best = change, 0
+        else:
+            self.since_best += 1
+            if self.since_best >= self.patience and self.mu > self.floor:
+                self.mu, self.since_best, self.best = self.mu / 2, 0, change
 
 
 def _fastica_deflation(Z: _White, W: np.ndarray, max_iter: int, tol: float
@@ -254,7 +270,8 @@ class FastICA(PartFile, ParamsEstimator):
     Fitted attributes: ``mean_`` (d,), ``whitening_`` (d, k) with ``z = (x - mean_) @
     whitening_``, ``rotation_`` (k, k) orthogonal, ``components_`` (k, d) with ``s = (x - mean_)
     @ components_.T``, ``n_iter_``, ``converged_``, ``score_``, ``restart_scores_``,
-    ``output_std_`` (ones: outputs are unit-variance on the training data).
+    ``output_std_`` (ones: outputs are unit-variance on the training data), ``whitened_``
+    (False when the whitening was skipped: ``whitening_`` is the identity).
 
     Its saved state (:meth:`to_arrays`, :meth:`save`): ``mean``, ``whitening``, ``rotation``
     (``components_`` is rebuilt from them bit for bit); the fit's diagnostics are not saved.
@@ -281,9 +298,13 @@ class FastICA(PartFile, ParamsEstimator):
         if T < 2:
             raise ValueError(f"ICA needs at least 2 samples, got {T}")
         self.n_features_in_ = d
-        self.mean_, C = _mean_cov(X)
-        white = (np.max(np.abs(C - np.eye(d))) < 1e-6
-                 and np.max(np.abs(self.mean_)) < 1e-6 and k == d)
+        with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused below
+            self.mean_, C = _mean_cov(X)
+        if not np.isfinite(C).all():
+            raise ValueError(f"X is too large: its covariance overflows float64 (|X| up to "
+                             f"{np.max(np.abs(X)):.3g}); rescale it")
+        # white: unit covariance (the input is centred with mean_ either way)
+        white = np.max(np.abs(C - np.eye(d))) < 1e-6 and k == d
         if p.whiten is False or (p.whiten == "auto" and white):
             if k != d:
                 raise ValueError("whiten=False needs n_components equal to the input dimension")
@@ -407,8 +428,8 @@ def output_stats(ica: FastICA, Y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     col = np.empty(Y.shape[0])
     for j in range(k):
         for t0 in range(0, Y.shape[0], _OUT_CHUNK):
-            y = np.asarray(Y[t0:t0 + _OUT_CHUNK], dtype=np.float64)
-            col[t0:t0 + _OUT_CHUNK] = (y - ica.mean_) @ ica.components_[j]
+            # float64 from float32 input too (the mean is float64)
+            col[t0:t0 + _OUT_CHUNK] = (Y[t0:t0 + _OUT_CHUNK] - ica.mean_) @ ica.components_[j]
         std[j] = col.std()
         peak[j] = np.percentile(col, 99.9, overwrite_input=True)
     return std, peak

@@ -119,10 +119,9 @@ def expand_leak(leak: LeakSpec, n_neurons: int) -> np.ndarray:
     is ``(0.05, 0.15)``); a vector of length ``n_neurons`` is used as is. Every rate must lie in
     (0, 1].
     """
-    arr = np.atleast_1d(np.asarray(leak, dtype=float))
+    arr = np.atleast_1d(check_finite("leak", leak))
     if arr.ndim != 1 or arr.size == 0:
         raise ValueError(f"leak must be a number or a 1-D sequence, got shape {arr.shape}")
-    check_finite("leak", arr)
     if np.any(arr <= 0) or np.any(arr > 1):
         raise ValueError(f"leak rates must lie in (0, 1], got {arr.min():g}..{arr.max():g}")
     if arr.size == n_neurons:
@@ -134,6 +133,12 @@ def expand_leak(leak: LeakSpec, n_neurons: int) -> np.ndarray:
     for value, idx in zip(arr, groups):
         out[idx] = value
     return out
+
+
+def _host(a: Any) -> Any:
+    """A torch tensor (on any device, even one that requires grad) as a numpy array; anything
+    else as it is."""
+    return a.detach().cpu().numpy() if hasattr(a, "detach") else a
 
 
 @dataclass
@@ -243,9 +248,7 @@ class Reservoir(PartFile):
         self.np_dtype = _np_dtype(dtype)
         self.dtype = self.np_dtype.__name__
         self.device = _check_device(device)
-        self.W_in = np.asarray(W_in, dtype=float)
-        self.W_res = np.asarray(W_res, dtype=float)
-        self.leak = np.asarray(leak, dtype=float)
+        self.W_in, self.W_res, self.leak = W_in, W_res, leak  # float64 from both callers
         self._W_in_run = np.ascontiguousarray(self.W_in, dtype=self.np_dtype)
         self._W_res_run = np.ascontiguousarray(self.W_res, dtype=self.np_dtype)
         a = self.leak
@@ -288,9 +291,7 @@ class Reservoir(PartFile):
             raise ValueError(f"backend must be 'auto', 'numpy' or 'torch', got {backend!r}")
         if backend == "numpy" and self.device != "cpu":
             raise ValueError(f"backend='numpy' runs on the CPU, but device={self.device!r}")
-        if hasattr(U, "detach"):  # a torch tensor
-            U = U.detach().cpu().numpy()
-        U = np.asarray(U, dtype=self.np_dtype)
+        U = np.asarray(_host(U), dtype=self.np_dtype)
         if U.ndim not in (2, 3) or U.shape[-1] != self.n_inputs:
             raise ValueError(f"U must have shape (T, {self.n_inputs}) or (B, T, {self.n_inputs}),"
                              f" got {U.shape}")
@@ -305,7 +306,7 @@ class Reservoir(PartFile):
         if leak is None:
             A = self.leak[None, :]
         elif np.ndim(leak) == 2:
-            A = np.stack([expand_leak(row, N) for row in np.asarray(leak, dtype=float)])
+            A = np.stack([expand_leak(row, N) for row in leak])
         else:
             A = expand_leak(leak, N)[None, :]
         B = max(B_in, A.shape[0])
@@ -316,11 +317,10 @@ class Reservoir(PartFile):
         # ---- initial state
         x = np.zeros((B, N), dtype=self.np_dtype)
         if x0 is not None:
-            x0 = np.asarray(x0.detach().cpu() if hasattr(x0, "detach") else x0,
-                            dtype=self.np_dtype)
-            if x0.shape[-1] != N or x0.ndim > 2:
-                raise ValueError(f"x0 must have shape ({N},) or (B, {N}), got {x0.shape}")
-            x = x + x0
+            x0 = check_finite("x0", _host(x0))
+            if x0.shape not in ((N,), (1, N), (B, N)):
+                raise ValueError(f"x0 must have shape ({N},) or ({B}, {N}), got {x0.shape}")
+            x += x0  # (rounded to the reservoir's float type)
         if backend == "torch" or (backend == "auto" and self.device != "cpu"):
             states = self._run_torch(U, A, x, threads)
         else:

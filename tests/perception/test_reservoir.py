@@ -93,6 +93,7 @@ def test_batched_equals_unbatched():
     assert Xb.shape == (3, 200, 60)
     for b in range(3):
         np.testing.assert_allclose(Xb[b], r.run(U[b]), atol=1e-12)
+    np.testing.assert_allclose(r.run(U[:2]), Xb[:2], atol=1e-12)  # two streams
     # leak sweep: one stream, B leak configurations over the same W_res
     leaks = np.array([[0.05, 0.15], [0.11, 0.14], [1.0, 1.0]])
     Xs = r.run(U[0], leak=leaks)
@@ -108,6 +109,13 @@ def test_expand_leak():
         expand_leak(0.0, 4)
     with pytest.raises(ValueError, match="leak"):
         expand_leak((0.1,) * 5, 4)
+    # a full-length vector is used as is, as float64 (integer rates too)
+    full = expand_leak([1, 1, 1], 3)
+    assert full.dtype == np.float64 and np.array_equal(full, [1.0, 1.0, 1.0])
+    # a matrix of rates, or none at all, is not a leak specification
+    for bad in (np.full((2, 2), 0.1), ()):
+        with pytest.raises(ValueError, match=r"^leak must be a number or a 1-D sequence"):
+            expand_leak(bad, 4)
 
 
 def test_bad_parameters_and_inputs():
@@ -124,8 +132,13 @@ def test_bad_parameters_and_inputs():
         r.run(np.full((10, 8), np.nan))
     with pytest.raises(ValueError, match="shape"):
         r.step(np.zeros(7))
-    with pytest.raises(ValueError, match="NaN"):
+    with pytest.raises(ValueError, match=r"^u \(the sensor vector\) contains NaN or inf"):
         r.step(np.array([np.nan] + [0.0] * 7))
+    # a value beyond float32's range is inf to a float32 reservoir: refused, not run
+    with (pytest.warns(RuntimeWarning, match="overflow"),
+          pytest.raises(ValueError, match=r"^u \(the sensor vector\) contains NaN or inf")):
+        r.step(np.full(8, 1e39))
+    assert np.all(np.isfinite(Reservoir(small(), dtype="float64").step(np.full(8, 1e39))))
 
 
 def test_numpy_dtype_and_shape():
@@ -185,6 +198,8 @@ def test_step_continues_eq1_from_a_given_state():
     np.testing.assert_allclose(r.step(u), np.tanh(a * (r.W_in @ u)), atol=1e-12)
     with pytest.raises(ValueError, match="x0"):
         r.reset(np.zeros(r.n_neurons + 1))
+    with pytest.raises(ValueError, match=r"^x0 contains 1 non-finite"):
+        r.reset(np.r_[np.nan, np.zeros(r.n_neurons - 1)])
 
 
 def test_the_paper_presets():
@@ -204,6 +219,8 @@ def test_the_paper_presets():
 def test_repr_shows_the_leak_rates():
     assert "leak=0.05/0.15," in repr(Reservoir(small()))
     assert "leak=0.3," in repr(Reservoir(small(leak=0.3)))
+    # at most the first four distinct rates
+    assert "leak=0.1/0.2/0.3/0.4," in repr(Reservoir(small(leak=(0.1, 0.2, 0.3, 0.4, 0.5, 0.6))))
 
 
 def test_non_finite_input_sequence_is_named():
@@ -233,5 +250,127 @@ def test_from_weights_keeps_the_weights_and_records_their_radius():
     np.testing.assert_allclose(s.run(U), r.run(U), atol=1e-5)
     one = Reservoir.from_weights(np.ones((1, 2)), np.full((1, 1), 0.5), 0.5, dtype="float64")
     assert one.params.leak == 0.5
+    # the recorded parameters describe the weights: 2 inputs, 1 neuron
+    assert (one.params.n_inputs, one.params.n_neurons) == (2, 1) == (one.n_inputs, one.n_neurons)
     # one neuron: x(1) = tanh(0.5 * 0 + 0.5 * (u1 + u2 + 0.5 * 0))
     assert one.run(np.array([[0.2, 0.4]]))[0, 0] == pytest.approx(np.tanh(0.3))
+
+
+def test_from_weights_names_non_finite_weights():
+    r = Reservoir(small(leak=0.2), dtype="float64")
+    for name, (W_in, W_res) in {"W_in": (r.W_in + np.nan, r.W_res),
+                                "W_res": (r.W_in, r.W_res + np.nan)}.items():
+        with pytest.raises(ValueError, match=rf"^{name} contains \d+ non-finite"):
+            Reservoir.from_weights(W_in, W_res, 0.2)
+
+
+@pytest.mark.parametrize("dtype", ["float32", "float64"])
+@pytest.mark.parametrize("leak", [None, np.array([[0.05, 0.15], [0.3, 0.3]])])
+def test_a_run_continues_bit_for_bit_from_its_last_state(dtype, leak):
+    # run(U[k:], x0=run(U[:k])[-1]) continues eq. 1 from x(k): the same bits as the whole run,
+    # in the reservoir's own float type (a resumed robot is the robot that never stopped).
+    # Chunks of 2 ticks or more: for a 1-tick chunk BLAS takes its matrix-vector path for
+    # W_in u, which rounds differently (1 ulp)
+    r = Reservoir(small(), dtype=dtype)
+    U = _inputs(120)
+    whole = r.run(U, leak=leak)
+    for k in (2, 50):
+        first = r.run(U[:k], leak=leak)
+        rest = r.run(U[k:], x0=first[..., -1, :], leak=leak)
+        assert np.array_equal(np.concatenate([first, rest], axis=-2), whole)
+    assert whole.dtype == np.dtype(dtype)
+
+
+def test_the_numpy_backend_is_the_default_on_the_cpu():
+    r = Reservoir(small())
+    U = _inputs(50)
+    assert np.array_equal(r.run(U, backend="numpy"), r.run(U))
+
+
+def test_a_bad_initial_state_of_a_run_is_named():
+    # x0 is (N,) or (B, N) for B streams / leak configurations, and finite
+    r = Reservoir(small())
+    U = np.stack([_inputs(10, seed=s) for s in range(3)])
+    for bad in (0.5, np.zeros(61), np.zeros((2, 60)), np.zeros((1, 1, 60))):
+        with pytest.raises(ValueError, match=r"^x0 must have shape \(60,\) or \(3, 60\), got"):
+            r.run(U, x0=bad)
+    with pytest.raises(ValueError, match=r"^x0 contains 1 non-finite"):
+        r.run(U[0], x0=np.r_[np.inf, np.zeros(59)])
+    # one state for every stream, or one each
+    x0 = np.random.default_rng(0).uniform(-0.5, 0.5, 60)
+    np.testing.assert_array_equal(r.run(U, x0=x0), r.run(U, x0=np.tile(x0, (3, 1))))
+    np.testing.assert_array_equal(r.run(U, x0=x0[None]), r.run(U, x0=x0))
+
+
+def test_the_numpy_tick_loop_runs_on_threads_blas_threads(monkeypatch):
+    # run(threads=n) sets the BLAS thread count for the tick loop and gives the caller's count
+    # back; threads=None leaves it as it is
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    def blas():
+        return {i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"}
+
+    r = Reservoir(small())
+    U = _inputs(10)
+    real_tanh, real_matmul, seen, drive = np.tanh, np.matmul, [], []
+
+    def tanh(*args, **kw):
+        seen.append(blas())
+        return real_tanh(*args, **kw)
+
+    def matmul(a, b, **kw):
+        if not seen:  # before the first tick: the input drive W_in u(t), on one thread always
+            drive.append(blas())
+        return real_matmul(a, b, **kw)
+
+    with threadpool_limits(2, user_api="blas"):
+        if blas() != {2}:
+            pytest.skip("no BLAS that threadpoolctl can set to 2 threads")
+        monkeypatch.setattr(np, "tanh", tanh)
+        monkeypatch.setattr(np, "matmul", matmul)
+        for leak in (None, np.array([[0.05, 0.15], [0.3, 0.3]])):
+            for kw, inside in (({"threads": 1}, {1}), ({"threads": None}, {2}), ({}, {1}),
+                               ({"threads": 2}, {2})):
+                seen.clear()
+                drive.clear()
+                r.run(U, leak=leak, **kw)  # the default is one thread
+                assert seen == [inside] * 10 and blas() == {2}
+                assert drive[:1] == [{1}]
+
+
+def test_leak_rates_given_as_a_list_or_array_are_kept_as_a_tuple_of_floats():
+    # the parameters are frozen and hashable: a list or 1-D array of rates becomes a tuple
+    for given in ([0.05, 0.15], np.array([0.05, 0.15]), [1, 1]):
+        p = ReservoirParams(n_neurons=4, leak=given)
+        assert isinstance(p.leak, tuple) and all(type(v) is float for v in p.leak)
+        assert p.leak == tuple(float(v) for v in given)
+        hash(p)
+    assert ReservoirParams(leak=0.3).leak == 0.3
+    with pytest.raises(ValueError, match="leak"):  # a bool is not a rate
+        ReservoirParams(n_neurons=4, leak=[True, 0.5])
+
+
+def test_leak_specifications_name_their_faults():
+    with pytest.raises(ValueError, match=r"^leak contains 1 non-finite"):
+        expand_leak((0.1, np.nan), 4)
+    for field in ("n_inputs", "n_neurons"):
+        with pytest.raises(ValueError, match=rf"^ReservoirParams\.{field}\b"):
+            ReservoirParams(**{field: 0})
+
+
+def test_from_weights_refuses_weights_that_do_not_fit_and_records_the_leak():
+    r = Reservoir(small(), dtype="float64")
+    with pytest.raises(ValueError, match=r"^W_in \(N, n_u\) and W_res \(N, N\) do not fit"):
+        Reservoir.from_weights(r.W_in[:, 0], r.W_res, 0.2)  # a vector, not (N, n_u)
+    s = Reservoir.from_weights(r.W_in, r.W_res, (0.05, 0.15))
+    assert s.params.leak == (0.05,) * 30 + (0.15,) * 30  # per neuron
+    np.testing.assert_array_equal(s.leak, r.leak)
+
+
+def test_streams_and_leak_configurations_that_do_not_broadcast_are_named():
+    r = Reservoir(small())
+    U = np.stack([_inputs(10, seed=s) for s in range(2)])
+    leaks = np.array([[0.05, 0.15], [0.1, 0.1], [0.3, 0.3]])
+    with pytest.raises(ValueError, match=r"^2 input streams and 3 leak configurations do not "
+                                         r"broadcast"):
+        r.run(U, leak=leaks)

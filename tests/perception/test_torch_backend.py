@@ -51,3 +51,75 @@ def test_cuda_fit_matches_the_cpu_fit():  # pragma: no cover - no GPU on the CI 
     cpu = RCSFAICA(n_reservoir=100, ica_restarts=2, dtype="float64").fit(U)
     gpu = RCSFAICA(n_reservoir=100, ica_restarts=2, dtype="float64", device="cuda").fit(U)
     np.testing.assert_allclose(gpu.transform(U), cpu.transform(U), atol=1e-6)
+
+
+def test_the_backend_choice_and_the_torch_thread_count(monkeypatch):
+    # backend="torch" runs the tick loop in torch, on `threads` CPU threads, and gives torch
+    # its own thread count back; "auto" and "numpy" on the CPU never call torch
+    r = Reservoir(params())
+    U = inputs(30)
+    real_tanh, seen = torch.tanh, []
+
+    def tanh(*args, **kw):
+        seen.append(torch.get_num_threads())
+        return real_tanh(*args, **kw)
+
+    monkeypatch.setattr(torch, "tanh", tanh)
+    before = torch.get_num_threads()
+    torch.set_num_threads(2)
+    try:
+        for leak in (None, np.array([[0.05, 0.15], [0.3, 0.3]])):
+            seen.clear()
+            r.run(U, leak=leak, backend="torch", threads=1)
+            assert seen == [1] * 30 and torch.get_num_threads() == 2
+            seen.clear()
+            r.run(U, leak=leak)
+            r.run(U, leak=leak, backend="numpy")
+            assert seen == []
+    finally:
+        torch.set_num_threads(before)
+
+
+def test_the_states_stay_on_the_reservoir_device_whatever_torch_s_default():
+    # a program that set torch's default device elsewhere ("meta" here: tensors without data)
+    # does not move a CPU reservoir's loop off the CPU
+    r = Reservoir(params(), dtype="float64")
+    U = inputs(60)
+    x0 = np.random.default_rng(2).uniform(-0.5, 0.5, 80)
+    want = r.run(U, x0=x0)
+    leaks = np.array([[0.05, 0.15], [0.3, 0.3]])
+    want_sweep = r.run(U, leak=leaks)
+    old = torch.get_default_device()
+    torch.set_default_device("meta")
+    try:
+        got = r.run(U, x0=x0, backend="torch")
+        got_sweep = r.run(U, leak=leaks, backend="torch")
+    finally:
+        torch.set_default_device(old)
+    np.testing.assert_allclose(got, want, atol=1e-12)
+    np.testing.assert_allclose(got_sweep, want_sweep, atol=1e-12)
+
+
+def test_torch_tensors_that_require_grad_are_accepted():
+    # U and x0 may be torch tensors, also ones that are part of an autograd graph
+    r = Reservoir(params(), dtype="float64")
+    U = inputs(40)
+    x0 = np.random.default_rng(3).uniform(-0.5, 0.5, 80)
+    Ut = torch.tensor(U, requires_grad=True)
+    x0t = torch.tensor(x0, requires_grad=True)
+    np.testing.assert_array_equal(r.run(Ut, x0=x0t), r.run(U, x0=x0))
+
+
+def test_on_a_cuda_device_auto_is_torch_and_numpy_is_refused(monkeypatch):
+    # the choice comes before any CUDA work, so a CUDA device is pretended here and the torch
+    # loop replaced by a recorder
+    monkeypatch.setattr(torch.cuda, "is_available", lambda: True)
+    r = Reservoir(params(), device="cuda")
+    with pytest.raises(ValueError, match=r"^backend='numpy' runs on the CPU, but device='cuda'"):
+        r.run(inputs(5), backend="numpy")
+    used = []
+    monkeypatch.setattr(r, "_run_torch", lambda U, A, x, threads: used.append(U.shape)
+                        or np.zeros((1, U.shape[1], 80), np.float32))
+    r.run(inputs(5))
+    r.run(inputs(5), backend="torch")
+    assert used == [(1, 5, 8), (1, 5, 8)]
