@@ -13,9 +13,10 @@ N = 600 from 1e4 to 1e6 ticks; N = 2400 x 1e6 ticks in <= 2 GB.
 
 Measured 2026-11-24 (streamed fit, 2 shared cores, ``ica_restarts=2``), MB the fit needs
 above the baseline: N = 600: 60 / 64 / 84 at T = 1e4 / 1e5 / 1e6 (before the ICA input was
-streamed: 61 / 81 / 430); N = 2400: 478 / 480 at T = 1e4 / 1e5 (peak RSS 586 / 598). What still
-grows with T is the ICA input itself, T x n_sfa float32 (16 MB at 1e6), and the chunks' starting
-states (N floats per 2,048 ticks).
+streamed: 61 / 81 / 430); N = 2400: 478 / 480 at T = 1e4 / 1e5 (peak RSS 586 / 598), and
+515 at T = 1e6 (peak RSS 743 MB; measured 2026-11-25, ``--n 2400 --ticks 1e6 --modes
+stream``, 3,495 s wall, 2,039 s CPU). What still grows with T is the ICA input itself,
+T x n_sfa float32 (16 MB at 1e6), and the chunks' starting states (N floats per 2,048 ticks).
 """
 
 from __future__ import annotations
