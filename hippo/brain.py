@@ -220,12 +220,9 @@ class Brain:
                  moving: bool, dt: float) -> Perception:
         """The neural chain for one tick: state layer -> timing chain (learning never stops)."""
         ev = self.layer.step(place, colour=colour, sound=sound, moving=moving, dt=dt)
-        # a stop the decider did not time by its learned delay is no measurement of it: the
-        # transition cells do not learn from it either (as the map does not, _on_event);
-        # otherwise one stop cut short re-times every later stop (deployments, tuning seed 0:
-        # a stop's delay went from 7.4 to 5.0 s over 5 h, the stops 20-30 cm early)
-        untimed = (ev.changed and self.decide.mode == Mode.WAIT and self.decide.stop_untimed
-                   and self.kind(ev.winner) == StateKind.STILL)
+        # the transition cells learn no delay from a stop the decider did not time (nor does
+        # the map, _on_event)
+        untimed = ev.changed and self.decide.untimed_stop(self.kind(ev.winner))
         return Perception(ev, self.timing.step(ev.winner, dt, learn_event=not untimed))
 
     def step(self, obs: Observation, truth: GroundTruth | None = None) -> Tick:
@@ -319,11 +316,7 @@ class Brain:
                 and cur in self.graph and self.graph.inferred(cur)):
             self.graph.remove_transition(cur)  # an inferred way back that led elsewhere
         if prev is not None:
-            # a stop timed by a soft recognition or a run-up is no measurement of the
-            # stop's delay: learning it would feed back (each stop late, the delay longer,
-            # the next stop later; stops 30-50 cm late after 4.5 h, tuning seed 1)
-            untimed = (kind == StateKind.STILL and self.decide.mode == Mode.WAIT
-                       and self.decide.stop_untimed)
+            untimed = self.decide.untimed_stop(kind)  # no measurement of the stop's delay
             self._learn(prev, new, None if untimed else t - entered_at, entry_pose)
         if kind.is_context:
             self.decide.release_away_from(new)
