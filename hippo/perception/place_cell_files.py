@@ -90,8 +90,7 @@ def _from_arrays(cls: type, a: dict[str, np.ndarray]) -> Any:
     if p.use_reservoir:
         reservoir = Reservoir.from_arrays(p.reservoir_params(), parts["reservoir"],
                                           dtype=p.dtype, device=p.device)
-    d_in = (p.n_inputs + (p.n_reservoir if p.use_reservoir else 0)) * (2 if p.slow_pool else 1)
-    sfa = SFA.from_arrays(p.sfa_params(), parts["sfa"], "sfa_", n_features_in=d_in)
+    sfa = SFA.from_arrays(p.sfa_params(), parts["sfa"], "sfa_", n_features_in=p.sfa_inputs)
     ica = FastICA.from_arrays(p.ica_params(), parts["ica"], "ica_", n_features_in=p.n_sfa)
     own = PartArrays("RCSFAICA", parts["own"], "", _OWN)
     output_std = own.get("output_std", (p.n_ica,))

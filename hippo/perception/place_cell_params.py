@@ -104,6 +104,13 @@ class RCSFAICAParams:
                 ours = [o for theirs, o in names.items() if re.search(rf"\b{theirs}\b", msg)]
                 raise ValueError(f"{' / '.join(ours) or 'RCSFAICAParams'}: {msg}") from None
 
+    @property
+    def sfa_inputs(self) -> int:
+        """Width of SFA's input before any expansion: ``[u; x]``, and their slow pool's mean
+        when ``slow_pool`` is on."""
+        width = self.n_inputs + (self.n_reservoir if self.use_reservoir else 0)
+        return width * (2 if self.slow_pool else 1)
+
     def reservoir_params(self) -> ReservoirParams:
         return ReservoirParams(n_inputs=self.n_inputs, n_neurons=self.n_reservoir,
                                spectral_radius=self.spectral_radius, leak=self.leak,

@@ -224,7 +224,7 @@ class RCSFAICA(ParamsEstimator):
         Ud = self._decimator().offline(U)
         if self.reservoir_ is None or p.sfa_expansion != "linear":
             return self._fit_features(self.features(Ud, downsampled=True))
-        d = (p.n_inputs + self.reservoir_.n_neurons) * (2 if p.slow_pool else 1)
+        d = p.sfa_inputs
         if stream is None:
             stream = Ud.shape[0] * d * self.reservoir_.np_dtype().itemsize > _HOLD_BYTES
         if stream:
@@ -246,7 +246,7 @@ class RCSFAICA(ParamsEstimator):
         p = self.params
         res = self.reservoir_
         T = Ud.shape[0]
-        d = (p.n_inputs + res.n_neurons) * (2 if p.slow_pool else 1)
+        d = p.sfa_inputs
         if hold:
             X = np.empty((T, d), dtype=res.np_dtype)
         w = int(p.washout)
@@ -277,7 +277,7 @@ class RCSFAICA(ParamsEstimator):
         w = int(p.washout)
         _, parts, chunks = self._harvest_summarised(Ud, hold=False)
         self.sfa_ = SFA(p.sfa_params())
-        d = (p.n_inputs + self.reservoir_.n_neurons) * (2 if p.slow_pool else 1)
+        d = p.sfa_inputs
         self.sfa_._prepare_shape(Ud.shape[0] - w, d)
         self.sfa_._solve(parts, Ud.shape[0] - w)
         # the ICA input, the only array of length T: n_sfa float32 columns (16 bytes a tick)
