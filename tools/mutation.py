@@ -49,7 +49,8 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/perception/ica_scores.py": ["tests/perception/test_ica.py"],
     "hippo/perception/reservoir.py": ["tests/perception/test_reservoir.py",
                                       "tests/perception/test_torch_backend.py"],
-    "hippo/perception/backends.py": ["tests/perception/test_reservoir.py"],
+    "hippo/perception/backends.py": ["tests/perception/test_reservoir.py",
+                                     "tests/perception/test_backends.py"],
     "hippo/perception/states.py": ["tests/perception/test_states.py"],
 }
 

@@ -42,7 +42,10 @@ def _num_threads(n: int | None) -> Iterator[None]:
 
 
 def _np_dtype(dtype: Any) -> type[np.floating]:
-    """numpy float type from ``"float32"``/``"float64"`` (a numpy or torch dtype is accepted)."""
+    """numpy float type from ``"float32"``/``"float64"`` (a numpy type or dtype, or a torch dtype,
+    is accepted)."""
+    if isinstance(dtype, type) and issubclass(dtype, np.generic):
+        dtype = np.dtype(dtype)  # np.float32 itself prints as "<class 'numpy.float32'>"
     name = str(dtype).removeprefix("torch.")
     if name not in ("float32", "float64"):
         raise ValueError(f"dtype must be 'float32' or 'float64', got {dtype!r}")
