@@ -36,6 +36,7 @@ from hippo.tasks.routes import (
     AngleLaps,
     LapCounter,
     Route,
+    lead_from,
     passes,
     progress_along,
     route_passes,
@@ -47,7 +48,7 @@ from hippo.tasks.teaching import Experimenter
 __all__ = [
     "ARENA_CHECKPOINTS", "HIREL_WAITS", "PAUSE_RATE", "PLACE_STATES", "AngleLaps",
     "Experimenter", "LapCounter", "Log", "PatrolCourse", "PatrolPhase", "Route", "Session",
-    "Tour", "check_patrol", "enum_names", "event_arrays", "explore", "learn_map",
+    "Tour", "check_patrol", "enum_names", "event_arrays", "explore", "lead_from", "learn_map",
     "make_places", "pass_report", "passes", "patrol_route", "progress_along", "random_patrol",
     "route_passes", "stops",
 ]

@@ -27,7 +27,7 @@ from scipy import ndimage
 
 from hippo.progress import Progress
 from hippo.sim import arenas
-from hippo.tasks.routes import LapCounter, Route, route_passes
+from hippo.tasks.routes import LapCounter, Route, lead_from, route_passes
 from hippo.tasks.session import Session
 from hippo.types import Mode, StateKind
 
@@ -218,6 +218,10 @@ class PatrolCourse:
         agent = self.agent
         return agent.kind(agent.state) if agent.state is not None else None
 
+    def from_here(self, waypoints: list[tuple[float, float]]) -> list[tuple[float, float]]:
+        """``waypoints`` for the leash from where the robot is (:func:`lead_from`)."""
+        return lead_from(self.s.world.arena, self.s.truth.pose[:2], waypoints)
+
     def near(self, point: Sequence[float], radius: float) -> bool:
         return math.dist(self.s.truth.pose[:2], point) < radius
 
@@ -240,7 +244,7 @@ class PatrolCourse:
         agent.lifted()
         s.run(int(agent.p.settle_time / dt) + 1)
         # one loop on the leash, counter-clockwise from the nearest waypoint ahead
-        s.teacher.lead(self.route.loop_from(s.truth.pose))
+        s.teacher.lead(self.from_here(self.route.loop_from(s.truth.pose)))
         self.laps()
         with Progress(1, "leash") as bar:
             s.run(6000, until=lambda o: not s.teacher.leading)
@@ -274,7 +278,7 @@ class PatrolCourse:
                 s.run(int((60.0 + 2.0 * ahead / 5.0) / dt),
                       until=lambda o, c=c: self.near(c, 12.0))
                 if not self.near(c, 12.0):
-                    s.lead(self.route.leg(s.truth.pose, c))
+                    s.lead(self.from_here(self.route.leg(s.truth.pose, c)))
                 s.block(waits[k])
                 agent.reward(self.names[k])
                 s.run(int(10 / dt),

@@ -7,6 +7,8 @@
   :meth:`Route.at` the point and direction at a progress; :meth:`Route.leg` the waypoints
   from one position to another along the route's direction; :meth:`Route.loop_from` a whole
   loop starting ahead of a pose.
+- :func:`lead_from` — waypoints to lead the robot through, reached from where it stands along
+  the arena's shortest path when a wall is in the way.
 - :class:`LapCounter` — laps by route progress (unwrapped over the loop's length), tracked
   from tick to tick.
 - :class:`AngleLaps` — laps by the angle swept around a point inside the loop.
@@ -28,8 +30,8 @@ import numpy as np
 from hippo._checks import check_finite
 from hippo.types import Mode, wrap_angle
 
-__all__ = ["AngleLaps", "LapCounter", "Route", "passes", "progress_along", "route_passes",
-           "stops"]
+__all__ = ["AngleLaps", "LapCounter", "Route", "lead_from", "passes", "progress_along",
+           "route_passes", "stops"]
 
 
 class Route:
@@ -168,6 +170,24 @@ class Route:
         if math.cos(math.atan2(wp[i0][1] - y, wp[i0][0] - x) - h) < 0:
             i0 = (i0 + 1) % len(wp)  # the nearest waypoint is behind: lead on, not back
         return wp[i0:] + wp[:i0] + [wp[i0]]
+
+
+def lead_from(arena: Any, start: Sequence[float], waypoints: Sequence[Sequence[float]],
+              radius: float = 3.7) -> list[tuple[float, float]]:
+    """``waypoints`` for a leash starting at ``start``: unchanged when a disc of ``radius`` can
+    go straight from ``start`` to the first of them, else with the arena's shortest path to
+    it in front. The waypoint of a route nearest the robot can lie behind a wall; a leash
+    pulled straight at it holds the robot against that wall (the maze, tuning seed 0: for the
+    whole lesson)."""
+    wp = [(float(x), float(y)) for x, y in waypoints]
+    if not wp:
+        return wp
+    (x, y), (x0, y0) = start[:2], wp[0]
+    u = np.linspace(0.0, 1.0, int(math.dist((x, y), (x0, y0)) / 2.0) + 2)
+    if all(arena.is_free(x + (x0 - x) * k, y + (y0 - y) * k, radius) for k in u):
+        return wp
+    _, path = arena.shortest_path((float(x), float(y)), (x0, y0), radius=radius)
+    return [(float(px), float(py)) for px, py in path[:-1]] + wp
 
 
 class LapCounter:

@@ -1,12 +1,22 @@
 """Routes and checkpoints: progress along a route, laps, passes and stops."""
 
 import math
+from itertools import pairwise
 
 import numpy as np
 import pytest
 
 from hippo.sim import arenas
-from hippo.tasks import AngleLaps, LapCounter, Route, passes, progress_along, route_passes, stops
+from hippo.tasks import (
+    AngleLaps,
+    LapCounter,
+    Route,
+    lead_from,
+    passes,
+    progress_along,
+    route_passes,
+    stops,
+)
 from hippo.types import Mode
 
 SQUARE = [(0, 0), (100, 0), (100, 100), (0, 100)]
@@ -171,3 +181,31 @@ def test_route_passes_count_one_pass_per_lap_by_progress():
     # a pass under way at the start of the phase does not count
     assert len(route_passes(arrays, r, (2.0, 0.0), phase=1)) == 2
     assert route_passes(arrays, r, (100.0, 50.0), phase=7) == []
+
+
+def _straight_is_free(arena, a, b, radius=3.7):
+    u = np.linspace(0.0, 1.0, int(np.hypot(b[0] - a[0], b[1] - a[1]) / 1.0) + 2)
+    return all(arena.is_free(a[0] + (b[0] - a[0]) * k, a[1] + (b[1] - a[1]) * k, radius)
+               for k in u)
+
+
+def test_a_leash_to_a_waypoint_behind_a_wall_goes_round_it():
+    # the maze's patrol route for tuning seed 0; the robot stands in the corridor x 120-160,
+    # and the route's waypoint nearest it lies beyond the wall x = 160
+    maze = arenas.get("maze")
+    route = Route.through(maze, [(269.0, 89.0), (205.0, 307.0)])
+    start = (129.5, 87.1)
+    wp = route.loop_from((*start, -1.57))
+    assert not _straight_is_free(maze, start, wp[0])
+    led = lead_from(maze, start, wp)
+    n = len(led) - len(wp)
+    assert n > 5 and led[n:] == [tuple(map(float, p)) for p in wp]
+    # the way there: every step of it clear of walls, from the robot to the route
+    way = [start, *led[:n + 1]]
+    assert all(_straight_is_free(maze, a, b) for a, b in pairwise(way))
+    assert np.hypot(led[0][0] - start[0], led[0][1] - start[1]) < 5.0
+    # in the open, the leash goes straight: the waypoints come back unchanged
+    two = arenas.get("two-rooms")
+    assert lead_from(two, (20.0, 20.0), [(40.0, 30.0), (60.0, 30.0)]) == [(40.0, 30.0),
+                                                                          (60.0, 30.0)]
+    assert lead_from(two, (20.0, 20.0), []) == []
