@@ -44,7 +44,10 @@ def main() -> None:
                        "--waits", ",".join(f"{w:g}" for w in waits)]
                 if args.quick:
                     cmd.append("--quick")
-                subprocess.run(cmd, check=False, capture_output=True)
+                done = subprocess.run(cmd, check=False, capture_output=True, text=True)
+                if done.returncode != 0:  # say so: a failed run would only be missing
+                    print(f"FAILED ({done.returncode}): {' '.join(cmd)}\n"
+                          f"{done.stderr[-2000:]}", file=sys.stderr)
     table(args.out)
 
 
