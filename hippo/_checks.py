@@ -14,15 +14,29 @@ from typing import Any
 import numpy as np
 
 
+def as_array(name: str, value: Any) -> np.ndarray:
+    """``np.asarray(value)``, or a ``ValueError`` naming ``name`` when it is no array at all
+    (ragged nested lists, objects numpy cannot read)."""
+    try:
+        return np.asarray(value)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be an array of numbers, got {type(value).__name__} "
+                         f"that numpy cannot read as one ({exc})") from None
+
+
 def check_finite(name: str, value: Any, *, keep_float32: bool = False) -> np.ndarray:
     """Return ``value`` as a float array, or raise ``ValueError`` if it holds NaN or inf.
 
     With ``keep_float32`` a float32 array is returned as is (no float64 copy of a large
     recording); anything else becomes float64.
     """
-    arr = np.asarray(value)
+    arr = as_array(name, value)
     if not (keep_float32 and arr.dtype == np.float32):
-        arr = np.asarray(arr, dtype=float)
+        try:
+            arr = np.asarray(arr, dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"{name} must hold real numbers, got dtype {arr.dtype} "
+                             f"({exc})") from None
     # one reduction on the hot path: a NaN or inf anywhere makes the sum non-finite
     if not math.isfinite(float(np.add.reduce(arr, axis=None))):
         bad = int(np.size(arr) - np.count_nonzero(np.isfinite(arr)))

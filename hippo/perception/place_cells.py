@@ -52,7 +52,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite
+from hippo._checks import as_array, check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo._threads import blas_budget, blas_threads, single_threaded_blas
 from hippo.perception.ica import FastICA, output_stats
@@ -117,7 +117,7 @@ class RCSFAICA(ParamsEstimator):
 
     # ------------------------------------------------------------------ input handling
     def _check_U(self, U: Any, *, fitting: bool = False) -> np.ndarray:
-        U = np.asarray(U)
+        U = as_array("sensor sequence U", U)
         n = self.params.n_inputs
         if U.ndim != 2 or U.shape[1] != n:
             raise ValueError(f"sensor sequence U must have shape (T, {n}), got {U.shape}")
