@@ -35,6 +35,8 @@ from hippo.sim import World, arenas
 from hippo.sim.controllers import WallFollowerParams
 from hippo.sim.record import record
 from hippo.sim.robot import RobotParams, SensorModel
+from hippo.tasks import Route, lead_from
+from hippo.tasks.patrol import random_patrol
 from hippo.timing import (
     NLMS,
     DelayRangeWarning,
@@ -233,6 +235,24 @@ CASES: list[tuple[str, typing.Callable, type, str]] = [
     ("rcsfaica seed float", lambda p: RCSFAICA(seed=1.5), V, r"seed.*1\.5"),
     ("rcsfaica device tpu", lambda p: RCSFAICA(device="tpu"), V, r"device.*tpu"),
     ("rcsfaica dtype float16", lambda p: RCSFAICA(dtype="float16"), V, r"dtype.*float16"),
+    # --- routes and leashes (hippo.tasks)
+    ("route of one point repeated", lambda p: Route([(5, 5), (5, 5), (5, 5)]), V,
+     r"^waypoints must not all be one point"),
+    ("route progress nan", lambda p: Route([(0, 0), (10, 0), (10, 10)]).progress(np.nan, 0), V,
+     r"^x must be finite"),
+    ("route progress_near near nan",
+     lambda p: Route([(0, 0), (10, 0), (10, 10)]).progress_near(1, 0, np.nan), V,
+     r"^near must be finite"),
+    ("route at text", lambda p: Route([(0, 0), (10, 0), (10, 10)]).at("3"), V,
+     r"^s must be a real number"),
+    ("lead_from start nan", lambda p: lead_from(arenas.get("maze"), (np.nan, 3.0), [(20, 20)]),
+     V, r"^start x must be finite"),
+    ("lead_from start outside", lambda p: lead_from(arenas.get("maze"), (-50, -50), [(20, 20)]),
+     V, r"^start \(-50, -50\) lies outside arena 'maze-e1'"),
+    ("lead_from waypoint inf",
+     lambda p: lead_from(arenas.get("maze"), (20, 20), [(20, np.inf)]), V,
+     r"^waypoints contains 1 non-finite"),
+    ("random_patrol seed -1", lambda p: random_patrol("two-rooms", 2, -1), V, r"^seed.*-1"),
     ("rcsfaica fit ragged rows", lambda p: RCSFAICA(n_reservoir=20).fit([[0.1] * 8, [0.2] * 7]),
      V, r"^sensor sequence U must be an array of numbers, got list"),
     ("rcsfaica fit text", lambda p: RCSFAICA(n_reservoir=20).fit("0.1 0.2"), V,

@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 from scipy import ndimage
 
+from hippo._checks import check_seed
 from hippo.progress import Progress
 from hippo.sim import arenas
 from hippo.tasks.routes import LapCounter, Route, lead_from, route_passes
@@ -114,7 +115,7 @@ def random_patrol(arena_name: str, n: int, seed: int, *, waits: tuple[float, flo
     if not 2 <= n <= 4:
         raise ValueError(f"n must be 2 to 4 checkpoints, got {n!r}")
     arena = arenas.get(arena_name)
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(check_seed("seed", seed))
     xs, ys, free = arena.free_grid(3.7)
     parts, _ = ndimage.label(free)
     home = parts[np.argmin(np.abs(xs - arena.start_pose[0])),

@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite
+from hippo._checks import check_finite, check_real
 from hippo.types import Mode, wrap_angle
 
 __all__ = ["AngleLaps", "LapCounter", "Route", "lead_from", "passes", "progress_along",
@@ -51,6 +51,8 @@ class Route:
         self._s0 = np.r_[0.0, np.cumsum(seg)[:-1]]
         self._len = seg
         self.length = float(seg.sum())
+        if not self.length > 0:
+            raise ValueError("waypoints must not all be one point: the route has no length")
 
     @classmethod
     def through(cls, arena: Any, points: Sequence[Sequence[float]], *, radius: float = 3.7,
@@ -86,7 +88,7 @@ class Route:
     def progress(self, x: float, y: float) -> float:
         """Distance (cm) along the route, from its first waypoint, of the point of the route
         nearest to ``(x, y)``."""
-        p = np.array([x, y], float) - self._a
+        p = np.array([check_real("x", x), check_real("y", y)]) - self._a
         L2 = np.maximum(self._len**2, 1e-12)
         u = np.clip(np.sum(p * self._d, axis=1) / L2, 0.0, 1.0)
         gap = np.hypot(p[:, 0] - u * self._d[:, 0], p[:, 1] - u * self._d[:, 1])
@@ -101,6 +103,7 @@ class Route:
         progress away from ``near`` (where two stretches meet, the one it is on). If no point
         of that part lies within ``window`` cm of ``(x, y)`` (the robot was carried, or not tracked
         for a while), the whole route is searched."""
+        x, y, near = check_real("x", x), check_real("y", y), check_real("near", near)
         dense = self._dense()
         gap = (dense[:, 0] - near + self.length / 2) % self.length - self.length / 2 \
             if self.closed else dense[:, 0] - near
@@ -130,7 +133,8 @@ class Route:
     def at(self, s: float) -> tuple[float, float, float]:
         """``(x, y, heading)``: the point ``s`` cm along the route (modulo its length if
         closed) and the direction of travel there (radians)."""
-        x, y = self._points_at(np.array([float(s)]))[0]
+        s = check_real("s", s)
+        x, y = self._points_at(np.array([s]))[0]
         ss = float(np.mod(s, self.length)) if self.closed else float(s)
         k = int(np.clip(np.searchsorted(self._s0, ss, side="right") - 1, 0, len(self._s0) - 1))
         return float(x), float(y), math.atan2(float(self._d[k, 1]), float(self._d[k, 0]))
@@ -179,10 +183,13 @@ def lead_from(arena: Any, start: Sequence[float], waypoints: Sequence[Sequence[f
     it in front. The waypoint of a route nearest the robot can lie behind a wall; a leash
     pulled straight at it holds the robot against that wall (the maze, tuning seed 0: for the
     whole lesson)."""
-    wp = [(float(x), float(y)) for x, y in waypoints]
+    x, y = check_real("start x", start[0]), check_real("start y", start[1])
+    if not (0.0 <= x <= arena.width and 0.0 <= y <= arena.height):
+        raise ValueError(f"start ({x:g}, {y:g}) lies outside arena {arena.name!r}")
+    wp = [(float(a), float(b)) for a, b in check_finite("waypoints", waypoints).reshape(-1, 2)]
     if not wp:
         return wp
-    (x, y), (x0, y0) = start[:2], wp[0]
+    x0, y0 = wp[0]
     u = np.linspace(0.0, 1.0, int(math.dist((x, y), (x0, y0)) / 2.0) + 2)
     if all(arena.is_free(x + (x0 - x) * k, y + (y0 - y) * k, radius) for k in u):
         return wp
