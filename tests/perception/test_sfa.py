@@ -195,6 +195,28 @@ def test_chunks_hold_rows_rows_and_the_split_is_a_boundary():
     assert chunk_bounds(10, 3, rows=4) == [0, 4, 8, 10]
     assert chunk_bounds(10, 3, rows=4, split=5) == [0, 4, 5, 8, 10]
     assert chunk_bounds(1000, 10) == [0, 1000]  # ~2 million values per chunk by default
+    # the default: 2,000,000 values per chunk, at least 256 rows
+    assert chunk_bounds(3_000_000, 1) == [0, 2_000_000, 3_000_000]
+    assert chunk_bounds(600, 100_000) == [0, 256, 512, 600]
+    assert chunk_bounds(10, 4, split=3) == [0, 3, 10]
+
+
+def test_moments_of_one_feature_and_of_nothing():
+    x = np.array([1.0, 4.0, 2.0, 7.0])
+    m = SFAMoments(1)
+    assert m.n == 0 and m.first is None and m.last is None    # nothing added yet
+    assert m.update(np.zeros((0, 1))) is m and m.n == 0 and m.first is None  # an empty chunk
+    m.update(x[:, None])
+    assert m.n == 4 and m.n_diff == 3
+    assert m.mean[0] == pytest.approx(3.5) and m.scatter[0, 0] == pytest.approx(21.0)
+    assert m.diff_scatter[0, 0] == pytest.approx(9 + 4 + 25)
+    assert m.first.tolist() == [1.0] and m.last.tolist() == [7.0]
+    with pytest.raises(ValueError, match=r"^n_features must be >= 1, got 0$"):
+        SFAMoments(0)
+    with pytest.raises(ValueError, match=r"^chunk must have shape \(k, 1\), got \(4, 2\)$"):
+        m.update(np.zeros((4, 2)))
+    with pytest.raises(ValueError, match=r"^moments of different dimensions cannot be merged$"):
+        m.merged(SFAMoments(2))
 
 
 def test_three_samples_are_enough_two_are_not():
