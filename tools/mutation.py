@@ -78,6 +78,19 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      r"dijkstra\(mat, indices=n\)", "equivalent: directed=True is scipy's default"),
     ("hippo/cognitive_map/planner.py", r"if level <= 0:", r"if level < 0:",
      "equivalent: a zero level gives level * w = 0, never above the input"),
+    ("hippo/cognitive_map/inputs.py", r"if level <= 0:", r"if level < 0:",
+     "equivalent: a zero level gives level * w = 0, never above the input"),
+    ("hippo/cognitive_map/inputs.py", r"level \* w > inputs\[i\]", r"level \* w >= inputs\[i\]",
+     "equivalent: on a tie the same value is written"),
+    ("hippo/cognitive_map/inputs.py", r"v >= threshold and v > 0", r"v >= threshold and v >= 0",
+     "equivalent: a level of 0 gives 0.0 either way"),
+    ("hippo/cognitive_map/inputs.py", r'get\("inferred", False\)', r'get\("inferred",( None)? ?\)',
+     "equivalent: bool(None) is False, as the default False"),
+    ("hippo/cognitive_map/inputs.py", r'get\("inferred", False\)', r'get\("inferred", True\)',
+     "equivalent: every transition has the attribute (add_transition, infer_reverse and the "
+     "GraphML loader set it)"),
+    ("hippo/cognitive_map/inputs.py", r"dtype=bool, count=len\(graph\)", r"dtype=bool, \)",
+     "equivalent: count only preallocates; the generator yields len(graph) values"),
     ("hippo/perception/reservoir.py", r"if At?.shape\[0\] == 1:", r"if At?.shape\[1\] == 1:",
      "equivalent: the batched loop computes the same eq. 1 as the shared-leak fast path"),
     ("hippo/perception/reservoir.py", r"n_inputs=8, n_neurons=600", r"(?s)^(?!.*n_inputs=)",
@@ -371,7 +384,8 @@ NEURAL_MODULES = [
     "hippo/perception/backends.py",
     "hippo/perception/states.py",
     *(f"hippo/cognitive_map/{m}.py" for m in
-      ("actions", "drives", "graph", "graphml", "localise", "planner", "quality", "synthetic")),
+      ("actions", "drives", "graph", "graphml", "inputs", "localise", "planner", "quality",
+       "synthetic")),
 ]
 
 
