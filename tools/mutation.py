@@ -39,16 +39,20 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
+# each part's own save/load (RCSFAICA's parts) and the streamed fit, which reach into SFA
+PART_FILES = "tests/perception/test_part_files.py"
+STREAMED = "tests/perception/test_fit_streamed.py"
+
 # the fast test files run against each module's mutants (the slow ones are deselected anyway)
 DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/timing/": ["tests/timing"],
     "hippo/cognitive_map/": ["tests/cognitive_map"],
-    "hippo/perception/sfa.py": ["tests/perception/test_sfa.py"],
+    "hippo/perception/sfa.py": ["tests/perception/test_sfa.py", PART_FILES, STREAMED],
     "hippo/perception/sfa_moments.py": ["tests/perception/test_sfa.py"],
-    "hippo/perception/ica.py": ["tests/perception/test_ica.py"],
+    "hippo/perception/ica.py": ["tests/perception/test_ica.py", PART_FILES],
     "hippo/perception/ica_scores.py": ["tests/perception/test_ica.py"],
     "hippo/perception/reservoir.py": ["tests/perception/test_reservoir.py",
-                                      "tests/perception/test_torch_backend.py"],
+                                      "tests/perception/test_torch_backend.py", PART_FILES],
     "hippo/perception/backends.py": ["tests/perception/test_reservoir.py",
                                      "tests/perception/test_backends.py"],
     "hippo/perception/states.py": ["tests/perception/test_states.py"],
