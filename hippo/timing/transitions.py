@@ -237,7 +237,7 @@ class TransitionCells:
         us = (self._target[rows] == winner).astype(float)
         eta = learning_modulation(us, self._m[self._target_slot[rows]], p.sigma2)
         learning = eta > 0.0
-        if not learning.any():
+        if not np.count_nonzero(learning):
             return
         self._w[rows], _ = nlms_update(self._w[rows], cs, us, eta, p, dt)
         self._refresh(rows[learning])
@@ -317,9 +317,12 @@ class TransitionCells:
     def _read(self, a: int, activity: np.ndarray) -> dict[Key, TransitionReadout]:
         """Read out every transition out of ``a`` at once.
 
-        ``X_ab = W_ab . X^a`` for all rows in one product; ``elapsed_fraction = tau_hat / T_ab``
-        and ``delay_over = [s_ab >= min_strength] and [tau_hat / T_ab >= 1 - lead / T_ab]``
-        as arrays, ``tau_hat`` the population readout of the battery (inf when it is silent).
+        ``X_ab = W_ab . X^a`` for all rows in one product; then, per row,
+        ``elapsed_fraction = tau_hat / T_ab`` and
+        ``delay_over = [s_ab >= min_strength] and [tau_hat / T_ab >= 1 - lead / T_ab]``,
+        ``tau_hat`` the population readout of the battery (inf when it is silent). Those are a
+        few scalars per row, taken as plain floats (the same IEEE operations as array ones,
+        without an array's overhead on a handful of rows).
         """
         rows = self._out.get(a)
         if rows is None:
@@ -328,19 +331,20 @@ class TransitionCells:
         if activity is self.timing.activity:  # the battery of this tick (the usual case)
             elapsed = self.timing.elapsed_readout()
         else:
-            elapsed = float(self.timing._readouts(activity)[0])
+            elapsed = self.timing._readout(activity)
         if math.isnan(elapsed):  # a silent battery: longer than any cell can time
             elapsed = math.inf
         self.elapsed = elapsed
-        preds = self._w[rows] @ activity
-        d, s = self._delay[rows], self._strength[rows]
+        preds = (self._w[rows] @ activity).tolist()
         lead = self.params.anticipation + self.params.latency
-        frac = elapsed / d  # a row whose weights are silent has T = nan: frac nan, never over
-        over = (s >= self.params.min_strength) & (frac >= 1.0 - lead / d)
-        keys = self._keys
-        return {keys[r]: TransitionReadout(keys[r], x, si, di, f, o) for r, x, si, di, f, o in
-                zip(rows.tolist(), preds.tolist(), s.tolist(), d.tolist(), frac.tolist(),
-                    over.tolist())}
+        strong = self.params.min_strength
+        keys, out = self._keys, {}
+        for r, x, d, s in zip(rows.tolist(), preds, self._delay[rows].tolist(),
+                              self._strength[rows].tolist()):
+            frac = elapsed / d  # a row whose weights are silent has T = nan: never over
+            out[keys[r]] = TransitionReadout(keys[r], x, s, d, frac,
+                                             s >= strong and frac >= 1.0 - lead / d)
+        return out
 
     def _check_key(self, key: Key) -> Key:
         if not isinstance(key, tuple) or len(key) != 2:

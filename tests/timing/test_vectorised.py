@@ -200,3 +200,26 @@ def test_sliding_mean_of_the_us_is_eq_3_on_every_tick():
         np.testing.assert_array_equal(cells._m[:m.size], m[:cells._m.size])
         settled += cells._settled_at >= 0
     assert settled > 500  # the long stays did settle (and skipped the update)
+
+
+def test_readout_flags_are_the_array_form_bit_for_bit():
+    """The per-row scalars of the readout (elapsed fraction, delay over) equal the array
+    formulas over all the winner's rows, on every tick of a random run (flags rising too)."""
+    timing = SpectralTiming()
+    cells = TransitionCells(timing, TransitionParams(latency=0.4))
+    rng = np.random.default_rng(6)
+    p, over = cells.params, 0
+    for winner in np.repeat(rng.integers(0, 5, 150), rng.integers(2, 60, 150)):
+        got = cells.step(timing.step(int(winner), 0.2), 0.2)
+        rows = cells._out.get(int(winner))
+        if rows is None:
+            continue
+        d, s = cells._delay[rows], cells._strength[rows]
+        frac = cells.elapsed / d
+        flag = (s >= p.min_strength) & (frac >= 1.0 - (p.anticipation + p.latency) / d)
+        want = cells._w[rows] @ timing.activity
+        np.testing.assert_array_equal([got[cells._keys[r]].elapsed_fraction for r in rows], frac)
+        assert [got[cells._keys[r]].delay_over for r in rows] == flag.tolist()
+        assert [got[cells._keys[r]].prediction for r in rows] == want.tolist()
+        over += int(flag.sum())
+    assert over > 10
