@@ -250,7 +250,7 @@ class SpectralTiming:
         if not vmax > 0.0:
             return math.nan
         th = self.params.readout_fraction * vmax
-        below = np.flatnonzero(v <= th)
+        below = (v <= th).nonzero()[0]
         i = int(below.searchsorted(peak))
         lo = int(below[i - 1]) + 1 if i > 0 else 0
         hi = int(below[i]) if i < below.size else v.size
