@@ -47,6 +47,8 @@ def check_finite(name: str, value: Any, *, keep_float32: bool = False) -> np.nda
 
 def check_positive(name: str, value: float, *, allow_zero: bool = False) -> float:
     """Raise ``ValueError`` unless ``value`` is a finite number > 0 (or >= 0)."""
+    if type(value) is float and 0.0 < value < math.inf:  # the usual case (every tick)
+        return value
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -261,7 +263,8 @@ def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarr
     # a handful of numbers: plain float comparisons (NaN fails them) beat array reductions
     if not all(0.0 <= v <= 1.0 for v in ir.tolist()):
         raise ValueError(f"obs.ir readings must be finite and in [0, 1], got {ir}")
-    if isinstance(t, bool) or not isinstance(t, numbers.Real) or not math.isfinite(t):
+    real = type(t) is float or (isinstance(t, numbers.Real) and not isinstance(t, bool))
+    if not real or not math.isfinite(t):
         raise ValueError(f"obs.t must be a finite time in s, got {t!r}")
     if not t >= last_t:
         raise ValueError(f"obs.t = {t!r} is earlier than the previous tick's {last_t!r}: "
@@ -272,7 +275,8 @@ def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarr
         raise ValueError(f"obs.odometry must be (dx, dy, dtheta), got {odo!r:.80}") from None
     if odo.shape != (3,) or not all(math.isfinite(v) for v in odo.tolist()):
         raise ValueError(f"obs.odometry must be 3 finite numbers (dx, dy, dtheta), got {odo!r:.80}")
-    if isinstance(floor, bool | np.bool_) or not isinstance(floor, numbers.Integral) or floor < 0:
+    if (type(floor) is not int and (isinstance(floor, bool | np.bool_)
+                                    or not isinstance(floor, numbers.Integral))) or floor < 0:
         raise ValueError(f"obs.floor must be an integer colour id >= 0, got {floor!r}")
     for name, v in (("sound", sound), ("moving", moving)):
         if not isinstance(v, bool | np.bool_):

@@ -130,8 +130,8 @@ class Agent:
         """Perceive, learn, decide and act for one tick; returns wheel speeds (cm/s).
 
         ``truth`` (``World.truth``) is needed only by ground-truth place cells."""
-        _, self._last_t = check_observation(obs, self.sensors.n, self._last_t)
-        tick = self.brain.step(obs, truth)
+        ir, self._last_t = check_observation(obs, self.sensors.n, self._last_t)
+        tick = self.brain._step(obs, truth, ir)
         command = self.motor.act(obs, tick)
         if command.gave_up:
             self.brain.abandon()

@@ -228,13 +228,20 @@ class Brain:
     def step(self, obs: Observation, truth: GroundTruth | None = None) -> Tick:
         """Perceive, learn and decide for one tick. ``truth`` is read by a ground-truth place
         source only (the comparison that measures what perception costs)."""
+        ir = check_finite("sensor readings", obs.ir)
+        check_finite("odometry", obs.odometry)
+        return self._step(obs, truth, ir)
+
+    def _step(self, obs: Observation, truth: GroundTruth | None, ir: np.ndarray) -> Tick:
+        """:meth:`step` on an observation already checked (:meth:`hippo.agent.Agent.step`
+        checks each one whole, ``check_observation``); ``ir``: its readings as a float array."""
         p = self.p
         if self.places is None:
             raise ValueError("this Brain has no place source: use perceive(), or pass places")
-        ir = check_finite("sensor readings", obs.ir)
         self.t = float(obs.t)
-        self.pi.step(obs.odometry)
-        self.odometer += math.hypot(obs.odometry[0], obs.odometry[1])
+        dx, dy, dth = obs.odometry
+        self.pi.advance(dx, dy, dth)
+        self.odometer += math.hypot(dx, dy)
         if (self.occlusion is not None and self.occlusion.boxed_in(obs)
                 and self._clear_view is not None):
             # occluded: the distance sensors see only what is pressed against the robot. They
@@ -244,7 +251,7 @@ class Brain:
         else:
             self._clear_view = ir
             acts = self.places.step(obs, truth)
-        turning = abs(float(obs.odometry[2])) > p.still_turn * p.dt
+        turning = abs(float(dth)) > p.still_turn * p.dt
         moving = bool(obs.moving or turning)
         if moving != self._moving:
             self._flip += 1

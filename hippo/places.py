@@ -48,6 +48,12 @@ class LearnedPlaceCells:
     def __init__(self, model: Any, prototypes: PlacePrototypes | None = None) -> None:
         if getattr(model, "ica_", None) is None:
             raise ValueError("LearnedPlaceCells needs a fitted RCSFAICA model")
+        if prototypes is not None:
+            prototypes._check_fitted()
+            d, n_ica = prototypes.centres_.shape[1], int(model.params.n_ica)  # type: ignore[union-attr]
+            if d != n_ica:
+                raise ValueError(f"prototypes were fitted on {d}-dimensional outputs; the "
+                                 f"model has n_ica={n_ica}")
         self.model = model
         self.prototypes = prototypes
         self.n_units = prototypes.n_units if prototypes is not None else int(model.params.n_ica)
@@ -55,7 +61,8 @@ class LearnedPlaceCells:
     def step(self, obs: Observation, truth: GroundTruth | None = None) -> np.ndarray:
         """Activities after this tick's sensor readings (``truth`` is ignored)."""
         y = self.model.step(obs.ir)
-        return y if self.prototypes is None else self.prototypes.step(y)
+        # the model's output is finite and of the prototypes' dimension: no second check
+        return y if self.prototypes is None else self.prototypes._step(y)
 
     def reset(self) -> None:
         self.model.reset_state()
@@ -94,7 +101,7 @@ class GroundTruthPlaceCells:
             raise ValueError("GroundTruthPlaceCells read the true position: pass truth="
                              "world.truth (a GroundTruth) to step(), e.g. agent.step(obs, "
                              "world.truth)")
-        d2 = np.sum((self.centres - np.asarray(truth.pose[:2])) ** 2, axis=1)
+        d2 = np.add.reduce((self.centres - np.asarray(truth.pose[:2])) ** 2, axis=1)  # np.sum
         return np.exp(-d2 / (2 * self.sigma**2))
 
     def reset(self) -> None:

@@ -41,6 +41,8 @@ def check_state_id(name: str, state: object) -> int:
     A state id is an integer >= 0 (Python or numpy integer; ``bool`` and floats are refused,
     even when integral, so that a mask or a mean never passes for an id).
     """
+    if type(state) is int and state >= 0:  # the usual case (every tick), no general rules
+        return state
     if isinstance(state, bool | np.bool_):
         raise ValueError(f"{name} must be an integer state id, got {state!r}")
     try:

@@ -303,3 +303,18 @@ def test_after_a_kidnap_the_first_decision_waits_for_the_map_to_recognise_the_pl
     else:
         # after the fixed 6 s the cells, stale for 10 s, still report the far end
         assert abs(centres[unit, 0] - x) > 60.0
+
+
+def test_boxed_in_is_answered_once_per_observation():
+    """The brain's occlusion test and the motor's stop ask about the same observation: the
+    second answer is the kept one; another observation (or other readings) is asked afresh."""
+    from hippo.sim.controllers import ObstacleAvoidance
+    from hippo.types import Observation
+    avoid = ObstacleAvoidance()
+    pressed, clear = np.zeros(8), np.ones(8)
+    obs = Observation(0.0, 0, pressed, 0, False, np.zeros(3), False)
+    assert avoid.boxed_in(obs) and avoid.boxed_in(obs)
+    assert not avoid.boxed_in(obs.with_ir(clear))
+    fresh = Observation(0.2, 1, pressed.copy(), 0, False, np.zeros(3), False)
+    assert avoid.boxed_in(fresh)
+    assert not avoid.boxed_in(Observation(0.4, 2, clear, 0, False, np.zeros(3), False))

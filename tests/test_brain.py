@@ -102,6 +102,28 @@ def test_perceive_is_the_one_neural_chain():
         brain.step(Observation(0.0, 0, np.zeros(8), 0, False, np.zeros(3), True))
 
 
+def test_step_checks_what_it_is_given_and_the_agent_checks_once():
+    """Brain.step, called directly, refuses non-finite readings and odometry (naming them);
+    an Agent checks each observation whole and then steps the brain unchecked, to the same
+    tick as Brain.step."""
+    brain, _run = make()
+    bad_ir = np.full(8, 0.5)
+    bad_ir[3] = np.nan
+    with pytest.raises(ValueError, match="sensor readings"):
+        brain.step(Observation(0.0, 0, bad_ir, 0, False, np.zeros(3), True))
+    with pytest.raises(ValueError, match="odometry"):
+        brain.step(Observation(0.0, 0, np.zeros(8), 0, False, np.array([0.0, np.inf, 0.0]),
+                               True))
+    a, _ = make()
+    b, _ = make()
+    for k in range(30):
+        obs = Observation(0.2 * k, k, np.full(8, 0.5), 0, False, np.array([1.0, 0.0, 0.01]),
+                          True)
+        ta = a.step(obs)
+        tb = b._step(obs, None, obs.ir)
+        assert ta == tb
+
+
 def test_tick_is_a_small_frozen_record_and_settling_explores():
     brain, run = make(settle_time=1.0)
     tick = run.step("B", moving=True)

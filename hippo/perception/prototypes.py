@@ -107,15 +107,21 @@ class PlacePrototypes(ParamsEstimator):
         d = self.centres_.shape[1]  # type: ignore[union-attr]
         if np.shape(y) != (d,):
             raise ValueError(f"place-cell output y must have shape ({d},), got {np.shape(y)}")
-        # the closed loop's tick: one finiteness check, the centres' squared norms kept from
-        # the previous tick (they change only when a prototype is recruited)
-        y2 = _real("place-cell output y", y)[None]
+        return self._step(_real("place-cell output y", y))
+
+    def _step(self, y: np.ndarray) -> np.ndarray:
+        """:meth:`step` on a checked output vector (a finite float array of the right shape:
+        :class:`~hippo.places.LearnedPlaceCells` hands over the model's own output). The
+        centres' squared norms are kept from the previous tick (they change only when a
+        prototype is recruited). The numbers of :meth:`transform` on one row, by 1-D
+        operations (the same products and sums, in the same order)."""
         C = self.centres_
         if getattr(self, "_cc_of", None) is not C:
             self._cc, self._cc_of = (C * C).sum(1), C  # type: ignore[operator]
-        a = np.exp(-_sqdist(y2, C, self._cc) / (2 * self.sigma_**2))[0]  # type: ignore[operator]
+        d2 = float(np.add.reduce(y * y)) - (2 * y[None] @ C.T)[0] + self._cc  # type: ignore[union-attr]
+        a = np.exp(-np.maximum(d2, 0.0) / (2 * self.sigma_**2))  # type: ignore[operator]
         p = self.params
-        if (p.recruit_threshold > 0 and a.max() < p.recruit_threshold
+        if (p.recruit_threshold > 0 and np.maximum.reduce(a) < p.recruit_threshold
                 and len(self.centres_) < p.max_prototypes):  # type: ignore[arg-type]
             self.centres_ = np.vstack([self.centres_, np.asarray(y, float)[None]])
             a = np.append(a, 1.0)
@@ -178,4 +184,4 @@ def _sqdist(Y: np.ndarray, C: np.ndarray, cc: np.ndarray | None = None) -> np.nd
     of ``C``'s squared norms, if already known)."""
     if cc is None:
         cc = (C * C).sum(1)
-    return np.maximum((Y * Y).sum(1)[:, None] - 2 * Y @ C.T + cc[None], 0.0)
+    return np.maximum(np.add.reduce(Y * Y, axis=1)[:, None] - 2 * Y @ C.T + cc[None], 0.0)

@@ -271,10 +271,12 @@ class StateLayer:
             self._mean = self._mean + rate * d
             self._var = np.maximum((1.0 - rate) * (self._var + rate * d * d), 1e-12)
         elif p.normalize == "pooled" and a.size:
-            z = (a - self._pool[0]) / math.sqrt(self._pool[1])
-            d = a - self._pool[0]
-            m = self._pool[0] + rate * float(d.mean())
-            v = max((1.0 - rate) * (self._pool[1] + rate * float((d * d).mean())), 1e-12)
+            mean, var = self._pool
+            d = a - mean
+            z = d / math.sqrt(var)
+            # the means as np.mean takes them (sum / count), without its wrapper
+            m = mean + rate * (float(np.add.reduce(d)) / d.size)
+            v = max((1.0 - rate) * (var + rate * (float(np.add.reduce(d * d)) / d.size)), 1e-12)
             self._pool = (m, v)
         else:
             z = a
@@ -374,14 +376,14 @@ class StateLayer:
         if new is None and self.winner is not None and pa.size:
             wk = self._keys[self.winner]
             units = self._units(self.winner)
-            w_act = (float(pa[units].max()) if wk.kind == "place"
+            w_act = (max(pa.item(u) for u in units) if wk.kind == "place"
                      else self._event_level(self.winner, snd, col, mov))
             beating = pa > w_act + p.margin
-            if wk.kind == "place":
-                beating[units] = False
+            for u in units:  # (empty unless the winner is a place)
+                beating[u] = False
             self._evidence = np.where(beating, self._evidence + dt, 0.0)
             ready = self._evidence >= p.hold_time - 1e-9
-            if ready.any():
+            if np.count_nonzero(ready):
                 new = int(self._place_ids[int(np.argmax(np.where(ready, pa, -np.inf)))])
 
         if new is not None and self.contexts is not None:
@@ -406,6 +408,6 @@ class StateLayer:
         if self._keys[self.winner].kind != "place":
             self.activity[self.winner] = self._event_level(self.winner, snd, col, mov)
         elif self.winner in self._clone_of:
-            self.activity[self.winner] = float(pa[self._units(self.winner)].max())
-        novel = not (pa.size and float(pa.max()) >= p.recruit_threshold)
+            self.activity[self.winner] = max(pa.item(u) for u in self._units(self.winner))
+        novel = not (pa.size and float(np.maximum.reduce(pa)) >= p.recruit_threshold)
         return StateEvent(self.t, int(self.winner), bool(changed), previous, self.since, novel)

@@ -153,17 +153,26 @@ class ObstacleAvoidance:
         #: the forward-facing rays (within ±100°) that :meth:`boxed_in` reads
         self._forward = np.flatnonzero(np.abs(self.geom.angles) <= np.deg2rad(100)).tolist()
 
+    #: the last observation asked about, its readings and the answer (see boxed_in)
+    _asked: tuple = (None, None, False)
+
     def boxed_in(self, obs: Observation) -> bool:
         """True when every forward-facing ray (within ±100°) reads an obstacle within
         ``range_min + stop`` cm (readings saturate at ``range_min``: closer reads the same).
 
         Asked twice a tick (the brain's occlusion test, the motor's stop) on 8 numbers: plain
-        float arithmetic over the forward rays, the same numbers as the array form."""
+        float arithmetic over the forward rays, the same numbers as the array form; the answer
+        is kept for the observation (and readings array) asked about last."""
+        asked, readings, answer = self._asked
+        if asked is obs and readings is obs.ir:
+            return answer
         m = self.geom.model
         lo, span = m.range_min, m.range_max - m.range_min
         limit = lo + self.params.stop
         ir = obs.ir.tolist() if isinstance(obs.ir, np.ndarray) else list(obs.ir)
-        return all(lo + ir[i] * span <= limit for i in self._forward)
+        answer = all(lo + ir[i] * span <= limit for i in self._forward)
+        self._asked = (obs, obs.ir, answer)
+        return answer
 
     def modulate(self, v: float, omega: float, obs: Observation) -> tuple[float, float]:
         """Blend a desired motion with turning away from what is ahead.

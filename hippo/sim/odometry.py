@@ -29,7 +29,11 @@ class PathIntegrator:
 
     def step(self, odometry: np.ndarray) -> tuple[float, float, float]:
         """Integrate one tick of odometry and return the new pose estimate."""
-        dx, dy, dth = check_finite("odometry", odometry)
+        return self.advance(*check_finite("odometry", odometry))
+
+    def advance(self, dx: float, dy: float, dth: float) -> tuple[float, float, float]:
+        """:meth:`step` on odometry already checked finite (the brain's tick: the agent checks
+        each observation whole)."""
         c, s = math.cos(self.heading), math.sin(self.heading)
         self.x += c * dx - s * dy
         self.y += s * dx + c * dy

@@ -86,7 +86,7 @@ def nlms_update(w: np.ndarray, cs: np.ndarray, us: np.ndarray, eta: np.ndarray,
     """
     x = w @ cs
     norm = float(cs @ cs) + params.sigma1
-    dw = params.alpha * eta[:, None] * (np.outer(us - x, cs) / norm
+    dw = params.alpha * eta[:, None] * ((us - x)[:, None] * cs / norm  # the outer product
                                         - params.leak * us[:, None] * w)
     return w + dt * dw, x
 

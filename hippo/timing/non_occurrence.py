@@ -107,7 +107,7 @@ class NonOccurrence:
     def step(self, predictions: Mapping[Hashable, object], dt: float) -> list[Hashable]:
         """One tick; returns the keys whose neuron fired now (also in ``self.fired``)."""
         check_positive("dt", dt)
-        if not isinstance(predictions, Mapping):
+        if type(predictions) is not dict and not isinstance(predictions, Mapping):
             raise ValueError(f"predictions must be a mapping key -> prediction, got "
                              f"{type(predictions).__name__}")
         p = self.params

@@ -139,6 +139,10 @@ class TransitionCells:
     #: skip the learning step on settled ticks (where it changes nothing); the tests turn it
     #: off to check that the numbers are the same
     _skip_settled = True
+    #: the slot at which m^US is exactly one-hot (-1: it is not), and the (params, dt) whose
+    #: NLMS step was checked stable (class defaults: a snapshot saved without them loads)
+    _settled_at = -1
+    _checked: tuple = (None, None)
 
     def __init__(self, timing: SpectralTiming, params: TransitionParams | None = None) -> None:
         if not isinstance(timing, SpectralTiming):
@@ -164,6 +168,7 @@ class TransitionCells:
             self._out: dict[int, np.ndarray] = {}   # state a -> rows of the transitions a -> *
             self._slot: dict[int, int] = {}
         self._m = np.zeros(max(len(self._slot), 8))
+        self._settled_at = -1
         self.state: int | None = None
         self.elapsed = math.nan
         self.readouts: dict[Key, TransitionReadout] = {}
@@ -197,8 +202,17 @@ class TransitionCells:
 
         :math:`T_r = \mathrm{readout}(W_r)` (the population readout of the delay stored in the
         synapses) and :math:`s_r = \sum_j W_{r,j} X_j(T_r)` (the prediction at that delay; 0
-        for a row whose weights are silent), for all rows at once.
+        for a row whose weights are silent), for all rows at once (one row, the usual case
+        between events, by the one-row readout: the same numbers).
         """
+        if rows.size == 1:
+            r = int(rows[0])
+            w = self._w[r]
+            d = self.timing._readout(w)
+            self._delay[r] = d
+            self._strength[r] = 0.0 if math.isnan(d) else float(
+                np.einsum("rj,rj->r", w[None], self.timing._tuning(d)[None])[0])
+            return
         w = self._w[rows]
         d = self.timing._readouts(w)
         ok = ~np.isnan(d)
@@ -223,7 +237,7 @@ class TransitionCells:
         us = (self._target[rows] == winner).astype(float)
         eta = learning_modulation(us, self._m[self._target_slot[rows]], p.sigma2)
         learning = eta > 0.0
-        if not learning.any():
+        if not np.count_nonzero(learning):
             return
         self._w[rows], _ = nlms_update(self._w[rows], cs, us, eta, p, dt)
         self._refresh(rows[learning])
@@ -240,25 +254,27 @@ class TransitionCells:
         """
         if not isinstance(battery, BatteryState):
             raise ValueError(f"battery must be a BatteryState, got {type(battery).__name__}")
-        dt = check_positive("dt", dt)
+        params, checked_dt = self._checked
+        if params is not self.params or checked_dt != dt:  # a new dt or new parameters
+            dt = self._check_dt(dt)
         p = self.params.nlms
-        step = p.alpha * dt * (p.gamma + p.sigma2)  # eta <= gamma + sigma2 for US in {0, 1}
-        if step >= 2.0:
-            raise ValueError(f"NLMS step alpha*dt*eta = {step:.3g} >= 2 is unstable; "
-                             "lower nlms.alpha or dt")
         winner = check_state_id("battery.state", battery.state)
         if battery.activity.shape != (self.timing.n_cells,):
             raise ValueError(f"battery.activity must have shape ({self.timing.n_cells},), "
                              f"got {battery.activity.shape}")
-        # eq. 3 for every known state: X^US_b(t) = 1 for the winner, 0 otherwise
+        # eq. 3 for every known state: X^US_b(t) = 1 for the winner, 0 otherwise. Between
+        # events m^US settles to exactly one-hot at the winner; from then on the update
+        # changes nothing (gamma * 1 + (1 - gamma) == 1 and gamma * 0 == 0) until the winner
+        # changes, and, with sigma2 = 0, eta_b = |X^US_b - m^US_b| = 0 on every row: nothing
+        # learns (most ticks)
         slot = self._state_slot(winner)
-        self._m *= p.gamma
-        self._m[slot] += 1.0 - p.gamma
-        self._m[self._m < 1e-12] = 0.0
-        # between events m^US settles to exactly one-hot at the winner; then, with sigma2 = 0,
-        # eta_b = |X^US_b - m^US_b| = 0 on every row and nothing learns (most ticks)
-        settled = (self._skip_settled and p.sigma2 == 0.0 and self._m[slot] == 1.0
-                   and np.count_nonzero(self._m) == 1)
+        if slot != self._settled_at or p.gamma + (1.0 - p.gamma) != 1.0:
+            m = self._m
+            m *= p.gamma
+            m[slot] += 1.0 - p.gamma
+            m[m < 1e-12] = 0.0
+            self._settled_at = slot if m[slot] == 1.0 and np.count_nonzero(m) == 1 else -1
+        settled = self._skip_settled and p.sigma2 == 0.0 and self._settled_at == slot
         if battery.changed and battery.previous is not None:
             a = check_state_id("battery.previous", battery.previous)
             self._state_slot(a)
@@ -276,20 +292,37 @@ class TransitionCells:
             if rows is not None and learn_event:
                 self._learn(rows, battery.previous_activity, winner, dt)
         else:
+            # between events X^US = 0 on every row out of the winner, so eta = m^US + sigma2:
+            # with sigma2 = 0 no row learns unless the target of one was active lately
             rows = self._out.get(winner)
-            if rows is not None and not settled:
+            if rows is not None and not settled and (
+                    p.sigma2 != 0.0 or np.count_nonzero(self._m[self._target_slot[rows]])):
                 self._learn(rows, battery.activity, winner, dt)
         self.state = winner
         self.readouts = self._read(winner, battery.activity)
         return self.readouts
 
+    def _check_dt(self, dt: float) -> float:
+        """``dt`` > 0 and the NLMS step stable with it (checked once per dt and parameters)."""
+        dt = check_positive("dt", dt)
+        p = self.params.nlms
+        step = p.alpha * dt * (p.gamma + p.sigma2)  # eta <= gamma + sigma2 for US in {0, 1}
+        if step >= 2.0:
+            raise ValueError(f"NLMS step alpha*dt*eta = {step:.3g} >= 2 is unstable; "
+                             "lower nlms.alpha or dt")
+        self._checked = (self.params, dt)
+        return dt
+
     # ------------------------------------------------------------------ readout
     def _read(self, a: int, activity: np.ndarray) -> dict[Key, TransitionReadout]:
         """Read out every transition out of ``a`` at once.
 
-        ``X_ab = W_ab . X^a`` for all rows in one product; ``elapsed_fraction = tau_hat / T_ab``
-        and ``delay_over = [s_ab >= min_strength] and [tau_hat / T_ab >= 1 - lead / T_ab]``
-        as arrays, ``tau_hat`` the population readout of the battery (inf when it is silent).
+        ``X_ab = W_ab . X^a`` for all rows in one product; then, per row,
+        ``elapsed_fraction = tau_hat / T_ab`` and
+        ``delay_over = [s_ab >= min_strength] and [tau_hat / T_ab >= 1 - lead / T_ab]``,
+        ``tau_hat`` the population readout of the battery (inf when it is silent). Those are a
+        few scalars per row, taken as plain floats (the same IEEE operations as array ones,
+        without an array's overhead on a handful of rows).
         """
         rows = self._out.get(a)
         if rows is None:
@@ -298,19 +331,20 @@ class TransitionCells:
         if activity is self.timing.activity:  # the battery of this tick (the usual case)
             elapsed = self.timing.elapsed_readout()
         else:
-            elapsed = float(self.timing._readouts(activity)[0])
+            elapsed = self.timing._readout(activity)
         if math.isnan(elapsed):  # a silent battery: longer than any cell can time
             elapsed = math.inf
         self.elapsed = elapsed
-        preds = self._w[rows] @ activity
-        d, s = self._delay[rows], self._strength[rows]
+        preds = (self._w[rows] @ activity).tolist()
         lead = self.params.anticipation + self.params.latency
-        frac = elapsed / d  # a row whose weights are silent has T = nan: frac nan, never over
-        over = (s >= self.params.min_strength) & (frac >= 1.0 - lead / d)
-        keys = self._keys
-        return {keys[r]: TransitionReadout(keys[r], x, si, di, f, o) for r, x, si, di, f, o in
-                zip(rows.tolist(), preds.tolist(), s.tolist(), d.tolist(), frac.tolist(),
-                    over.tolist())}
+        strong = self.params.min_strength
+        keys, out = self._keys, {}
+        for r, x, d, s in zip(rows.tolist(), preds, self._delay[rows].tolist(),
+                              self._strength[rows].tolist()):
+            frac = elapsed / d  # a row whose weights are silent has T = nan: never over
+            out[keys[r]] = TransitionReadout(keys[r], x, s, d, frac,
+                                             s >= strong and frac >= 1.0 - lead / d)
+        return out
 
     def _check_key(self, key: Key) -> Key:
         if not isinstance(key, tuple) or len(key) != 2:

@@ -42,6 +42,17 @@ def test_online_recruitment_of_a_novel_place():
     assert np.argmax(p.step(np.array([9.1, 9.0, 8.9]))) == 4  # the new cell wins nearby
 
 
+@pytest.mark.parametrize("d", [3, 24])
+def test_one_output_step_is_the_transform_of_one_row_bit_for_bit(d):
+    """The closed loop's tick (1-D operations, centre norms kept) gives exactly the numbers of
+    transform() on a block of one row, for a few dims and many outputs."""
+    rng = np.random.default_rng(d)
+    Y = rng.standard_normal((400, d)) * 2.0
+    p = PlacePrototypes(PrototypeParams(n_prototypes=16, seed=0)).fit(Y)
+    for y in np.concatenate([Y[:100], rng.standard_normal((100, d)) * 4.0]):
+        np.testing.assert_array_equal(p.step(y), p.transform(y[None])[0])
+
+
 def test_same_seed_same_prototypes_and_round_trip(tmp_path):
     _, Y = _clusters(3)
     a = PlacePrototypes(PrototypeParams(n_prototypes=6, seed=5)).fit(Y)

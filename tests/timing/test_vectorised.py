@@ -137,3 +137,89 @@ def test_vectorised_transition_cells_equal_the_plain_ones(seed: int):
     for k in fast.transitions:
         np.testing.assert_allclose(fast.weights(k), plain.weights(k), rtol=1e-10, atol=1e-13)
         assert fast.successors(k[0]) == plain.successors(k[0])
+
+
+def _rows(timing: SpectralTiming, seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    rows = [timing.tuning(t) * rng.uniform(0.1, 3.0) for t in rng.uniform(0.0, 150.0, 300)]
+    rows += [rng.random(timing.n_cells) for _ in range(100)]            # ragged patterns
+    rows += [rng.standard_normal(timing.n_cells) for _ in range(100)]   # signed ones
+    rows += [np.zeros(timing.n_cells), -rng.random(timing.n_cells)]     # silent ones
+    rows += [timing.tuning(5.0) + timing.tuning(40.0)]                  # two bumps
+    return np.array(rows)
+
+
+@pytest.mark.parametrize("fraction", [0.5, 0.0, 0.9])
+def test_one_row_code_is_the_code_of_many_rows_bit_for_bit(fraction: float):
+    """The per-tick readout of one row (_code, _readout) gives exactly the numbers of the
+    all-rows form on a block of that one row (_codes, _readouts), silent rows included (nan).
+    (Over a block of many rows the matrix product may round a row's sum differently: there
+    the two agree to rounding.)"""
+    from hippo.timing import SpectralParams
+    timing = SpectralTiming(SpectralParams(readout_fraction=fraction))
+    V = _rows(timing, 5)
+    one = np.array([timing._code(v) for v in V])
+    np.testing.assert_array_equal(one, [timing._codes(v[None])[0] for v in V])
+    np.testing.assert_array_equal([timing._readout(v) for v in V],
+                                  [timing._readouts(v[None])[0] for v in V])
+    np.testing.assert_allclose(one, timing._codes(V), rtol=1e-13)
+    assert np.isnan(one[-3]) and np.isnan(one[-2]) and not np.isnan(one[:-3]).any()
+
+
+def test_one_row_refresh_is_the_array_refresh_bit_for_bit():
+    """Re-reading one transition's delay and strength after it learned (the usual tick) gives
+    the numbers of the array form over a block of one row."""
+    timing = SpectralTiming()
+    cells = TransitionCells(timing)
+    rng = np.random.default_rng(2)
+    for winner in np.repeat(rng.integers(0, 5, 80), rng.integers(2, 60, 80)):
+        cells.step(timing.step(int(winner), 0.2), 0.2)
+    assert len(cells.transitions) > 10
+    for r in range(len(cells.transitions)):
+        w = cells._w[[r]]
+        d = timing._readouts(w)
+        s = 0.0 if np.isnan(d[0]) else np.einsum("rj,rj->r", w, timing._tuning(d))[0]
+        cells._refresh(np.array([r]))
+        assert cells._delay[r] == d[0] or (np.isnan(d[0]) and np.isnan(cells._delay[r]))
+        assert cells._strength[r] == s
+
+
+def test_sliding_mean_of_the_us_is_eq_3_on_every_tick():
+    """m^US is left alone on ticks where eq. 3 would not change it (exactly one-hot at the
+    winner): it equals eq. 3 applied on every tick, bit for bit."""
+    timing = SpectralTiming()
+    cells = TransitionCells(timing)
+    rng = np.random.default_rng(4)
+    gamma = cells.params.nlms.gamma
+    m, settled = np.zeros(16), 0
+    for winner in np.repeat(rng.integers(0, 6, 60), rng.integers(1, 90, 60)):
+        cells.step(timing.step(int(winner), 0.2), 0.2)
+        m *= gamma
+        m[cells._slot[int(winner)]] += 1.0 - gamma
+        m[m < 1e-12] = 0.0
+        np.testing.assert_array_equal(cells._m[:m.size], m[:cells._m.size])
+        settled += cells._settled_at >= 0
+    assert settled > 500  # the long stays did settle (and skipped the update)
+
+
+def test_readout_flags_are_the_array_form_bit_for_bit():
+    """The per-row scalars of the readout (elapsed fraction, delay over) equal the array
+    formulas over all the winner's rows, on every tick of a random run (flags rising too)."""
+    timing = SpectralTiming()
+    cells = TransitionCells(timing, TransitionParams(latency=0.4))
+    rng = np.random.default_rng(6)
+    p, over = cells.params, 0
+    for winner in np.repeat(rng.integers(0, 5, 150), rng.integers(2, 60, 150)):
+        got = cells.step(timing.step(int(winner), 0.2), 0.2)
+        rows = cells._out.get(int(winner))
+        if rows is None:
+            continue
+        d, s = cells._delay[rows], cells._strength[rows]
+        frac = cells.elapsed / d
+        flag = (s >= p.min_strength) & (frac >= 1.0 - (p.anticipation + p.latency) / d)
+        want = cells._w[rows] @ timing.activity
+        np.testing.assert_array_equal([got[cells._keys[r]].elapsed_fraction for r in rows], frac)
+        assert [got[cells._keys[r]].delay_over for r in rows] == flag.tolist()
+        assert [got[cells._keys[r]].prediction for r in rows] == want.tolist()
+        over += int(flag.sum())
+    assert over > 10
