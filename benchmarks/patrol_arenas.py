@@ -4,7 +4,9 @@ For each arena and seed: ``2 + seed % 3`` checkpoints and their waits drawn by
 :func:`hippo.tasks.patrol.random_patrol` (generator = the seed), then ``hippo run patrol``
 with them on ground-truth and on learned place cells. Prints, per arena and place cells:
 passes with a stop / passes, stops whose wait is within 3 % of the learned one, loops
-reproduced (reproduction phase >= 0.9 laps) and patrol loops completed.
+reproduced (reproduction phase >= 0.9 laps) and patrol loops completed; and, without the
+route (:func:`hippo.tasks.patrol.patrol_rounds`), the patrol's rounds with every checkpoint
+served and its stops that served a checkpoint / all its stops at checkpoints.
 
     python benchmarks/patrol_arenas.py OUT --seeds 100-109 [--quick]
 """
@@ -17,7 +19,11 @@ import subprocess
 import sys
 from pathlib import Path
 
-from hippo.tasks.patrol import random_patrol
+import numpy as np
+
+from hippo.sim.robot import RobotParams
+from hippo.tasks import stops
+from hippo.tasks.patrol import PatrolPhase, patrol_rounds, random_patrol
 
 ARENAS = ("two-rooms", "goal-arena", "maze")
 
@@ -55,10 +61,15 @@ def table(folder: Path) -> None:
     rows: dict[tuple[str, str], list[dict]] = {}
     for f in sorted(folder.glob("*/metrics.json")):
         m = json.loads(f.read_text())
+        with np.load(f.parent / "run.npz") as z:
+            made = stops(dict(z), m["checkpoints_cm"], RobotParams().moving_threshold,
+                         taught_phase=PatrolPhase.CHECKPOINTS)
+        m["rounds"] = patrol_rounds(made, len(m["checkpoints_cm"]), phase=PatrolPhase.PATROL)
         rows.setdefault((m["arena"], m["place_cells"]), []).append(m)
     print("| arena | place cells | seeds | passes with a stop | extra / misplaced stops | "
-          "waits within 3 % | loops reproduced | runs with every patrol loop done |")
-    print("|---|---|---|---|---|---|---|---|")
+          "waits within 3 % | loops reproduced | runs with every patrol loop done | rounds "
+          "(every checkpoint served) | stops serving / made |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for (arena, pc), ms in sorted(rows.items()):
         made = sum(m["checkpoint_stops_made"] for m in ms)
         exp = sum(m["checkpoint_stops_expected"] for m in ms)
@@ -70,8 +81,10 @@ def table(folder: Path) -> None:
         rep = sum(m["reproduced_loop_fraction"] >= 0.9 for m in ms)
         done = sum(m["loop_completion"] >= 1.0 for m in ms)
         seeds = ",".join(str(m["seed"]) for m in ms)
+        rounds = sum(m["rounds"][0] for m in ms)
+        serving, stopped = (sum(m["rounds"][k] for m in ms) for k in (1, 2))
         print(f"| {arena} | {pc} | {seeds} | {made}/{exp} | {extra} / {mis} | {ok}/{len(errs)} "
-              f"| {rep}/{len(ms)} | {done}/{len(ms)} |")
+              f"| {rep}/{len(ms)} | {done}/{len(ms)} | {rounds} | {serving}/{stopped} |")
 
 
 if __name__ == "__main__":

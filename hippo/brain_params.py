@@ -44,6 +44,9 @@ class BrainParams:
         ``turn_limit`` rad (about 100°: it would turn a moving robot around) has its drive
         activity multiplied by ``turn_discount`` when transitions compete (motor continuity
         against aliasing).
+    min_heading_r: a move whose measured headings disagree (mean resultant length below this:
+        made both ways, as out of a floor-colour zone that lies inside one place field) has no
+        direction: the robot keeps its own heading, and no turn discount applies to it.
     cycle_visits, cycle_window, cycle_explore: habituation. Entering the same place
         ``cycle_visits`` times within ``cycle_window`` s while a drive is active means the map
         is leading the robot in circles (noisy place states can make transitions point back
@@ -124,6 +127,7 @@ class BrainParams:
     stop_lead: float = 0.5
     turn_limit: float = 1.75
     turn_discount: float = 0.5
+    min_heading_r: float = 0.5
     cycle_visits: int = 3
     cycle_window: float = 60.0
     cycle_explore: float = 20.0
@@ -161,7 +165,8 @@ class BrainParams:
         check_positive("release_distance", self.release_distance, allow_zero=True)
         check_positive("runup_tolerance", self.runup_tolerance, allow_zero=True)
         check_positive("runup_window", self.runup_window, allow_zero=True)
-        for name in ("coactive", "leave_fraction", "stop_lead", "turn_discount", "forget"):
+        for name in ("coactive", "leave_fraction", "stop_lead", "turn_discount", "forget",
+                     "min_heading_r"):
             v = getattr(self, name)
             if not 0.0 <= v <= 1.0:
                 raise ValueError(f"{name} must lie in [0, 1], got {v}")

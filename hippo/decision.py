@@ -213,9 +213,8 @@ class Decider(RunupRules):
             vals = np.array([self._activity(t) for t in out])
             if keep_heading or exclude_wait:
                 for i, t in enumerate(out):
-                    a = g.action(t)
-                    if (not a.is_wait
-                            and abs(wrap_angle(a.heading - b.pi.heading)) > b.p.turn_limit):
+                    h = self._direction(t)
+                    if h is not None and abs(wrap_angle(h - b.pi.heading)) > b.p.turn_limit:
                         vals[i] *= b.p.turn_discount
             if b.p.own_stops_only:
                 # a stop is made for a drive that wants it: a stop whose wait serves no free,
@@ -237,14 +236,18 @@ class Decider(RunupRules):
         self.current, self.current_since = tr, b.t
         action = g.action(tr)
         if not action.is_wait:
-            self.mode = Mode.MOVE
-            self.heading = float(action.heading)  # type: ignore[arg-type]
+            self.mode, h = Mode.MOVE, self._direction(tr)
+            self.heading = float(b.pi.heading if h is None else h)
         elif b.kind(tr[1]) == StateKind.STILL and b.p.approach:
             self.mode = Mode.APPROACH   # keep going until the learned time-to-stop is over
             self._entry_timed = True
             self._approach_t0 = b.entered_at
         else:
             self._wait_on(tr)
+
+    def _direction(self, tr: Transition) -> float | None:
+        """Heading of move ``tr``, None if it has none (a robot keeps its own then)."""
+        return self.b.graph.direction(tr, self.b.p.min_heading_r)
 
     def _stop_wanted(self, still: int) -> bool:
         """Is a drive linked to a wait out of stop ``still`` free and active?"""
@@ -387,7 +390,8 @@ class Decider(RunupRules):
         if served and self._anchors(served[0]):  # the next run-up starts here
             b.wait_ended_at, b.last_wait_drive = b.odometer, served[0]
         for name in b.drives.names:
-            if (a, s) in b.drives.links(name) and name not in self._inhibited:
+            held = name in self._inhibited and b.drives.is_inhibited(name)  # a teacher releases
+            if (a, s) in b.drives.links(name) and not held:
                 if not own:
                     b.drives.extinguish(name, (a, s))
                 b.drives.inhibit(name)

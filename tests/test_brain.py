@@ -497,3 +497,38 @@ def test_a_stop_is_no_short_cut_for_another_drives_goal():
     brain.drives.set_level("sound", 1.0)
     brain.decide.choose()                                    # its own drive wants it: it stops
     assert brain.decide.current == (a, brain.layer.find("still", context=a))
+
+
+def test_a_wait_inhibits_its_drive_again_once_another_hand_released_it():
+    # the drive a wait held is released by someone else (a teacher) before the robot left the
+    # stop's region: the next wait for it must hold it again, not count it as still held
+    brain, run = after_extinction(60.0)
+    brain.drives.release("sound")
+    brain.drives.set_level("sound", 1.0)
+    run.trial(delay=None)
+    assert brain.drives.is_inhibited("sound") and brain.drives.level("sound") == 0.0
+
+
+def test_a_move_with_no_direction_keeps_the_robots_heading():
+    # A -> B made heading 0 and heading pi (learned both ways, as out of a floor-colour zone
+    # inside one place field): its mean heading (+-90 deg) is no direction to turn to
+    brain, run = make()
+    run.ticks(15, "A", moving=True)
+    run.ticks(15, "B", moving=True)
+    a, b = brain.layer.find("place", 0), brain.layer.find("place", 1)
+    brain.graph.add_transition(a, b, (math.pi, 15.0))
+    brain.drives.set_level("sound", 0.0)     # no drive: a known move out of A
+    assert brain.graph.direction((a, b), brain.p.min_heading_r) is None
+    brain.decide.choose(a)
+    assert brain.decide.current == (a, b) and brain.decide.mode == Mode.MOVE
+    assert brain.decide.heading == pytest.approx(brain.pi.heading)
+    brain, run = make(min_heading_r=0.0)     # with no minimum it turns to the mean heading
+    run.ticks(15, "A", moving=True)
+    run.ticks(15, "B", moving=True)
+    a, b = brain.layer.find("place", 0), brain.layer.find("place", 1)
+    brain.graph.add_transition(a, b, (math.pi, 15.0))
+    brain.drives.set_level("sound", 0.0)
+    brain.decide.choose(a)
+    assert abs(brain.decide.heading) == pytest.approx(math.pi / 2)
+    with pytest.raises(ValueError, match="min_heading_r"):
+        BrainParams(min_heading_r=1.5)

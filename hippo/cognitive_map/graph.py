@@ -180,6 +180,13 @@ class TransitionGraph:
             return Action.wait()
         return Action(MOVE, d["heading"], d["distance"])
 
+    def direction(self, t: Transition, min_r: float = 0.0) -> float | None:
+        """The mean heading of move ``t``, or None for a wait or a move whose measured headings
+        disagree (``heading_r`` < ``min_r``: made both ways, a move with no direction)."""
+        d = self._g.nodes[self._check_transition(t)]
+        r = d["heading_r"]
+        return None if d["heading"] is None or (r is not None and r < min_r) else d["heading"]
+
     def delay(self, t: Transition) -> float | None:
         """The mean learned delay (s) of ``t``, or ``None`` if never measured."""
         return self._g.nodes[self._check_transition(t)]["delay"]

@@ -32,8 +32,17 @@ from hippo.tasks.routes import LapCounter, Route, lead_from, route_passes
 from hippo.tasks.session import Session
 from hippo.types import Mode, StateKind
 
-__all__ = ["ARENA_CHECKPOINTS", "HIREL_WAITS", "PatrolCourse", "PatrolPhase", "check_patrol",
-           "pass_report", "patrol_route", "random_patrol"]
+__all__ = [
+    "ARENA_CHECKPOINTS",
+    "HIREL_WAITS",
+    "PatrolCourse",
+    "PatrolPhase",
+    "check_patrol",
+    "pass_report",
+    "patrol_rounds",
+    "patrol_route",
+    "random_patrol",
+]
 
 #: the arenas a patrol runs in, with their default checkpoints (cm): patrol-course's are its
 #: landmarks checkpoint-1..3 on the corridor loop; the others' were placed in distinct parts
@@ -164,6 +173,28 @@ def pass_report(arrays: dict, route: Route, checkpoints: Sequence[Sequence[float
                      "misplaced_stops": sum(1 for st in here if st["drive"] != k),
                      "rel_errors": err})
     return rows
+
+
+def patrol_rounds(stop_list: Sequence[dict], n: int, *, phase: int) -> tuple[int, int, int]:
+    """The patrol measured without a route: the stops made during ``phase`` (from
+    :func:`hippo.tasks.stops`) in the order made; a stop *serves* its checkpoint when the
+    robot made it for that checkpoint's drive and the checkpoint was not the last one served;
+    a *round* is done each time every one of the ``n`` checkpoints has been served since the
+    last round. Returns ``(rounds, stops serving, stops made)``. HIREL's map sets no order
+    between checkpoints: a robot that serves them in another order than the route's, or
+    shuttles along a corridor the route runs both ways, still patrols (progress along such a
+    route cannot tell out from back)."""
+    here = sorted((st for st in stop_list if st["phase"] == phase), key=lambda st: st["i0"])
+    rounds, serving, last, seen = 0, 0, None, set()
+    for st in here:
+        k = st["checkpoint"]
+        if st["drive"] != k or k == last:
+            continue
+        serving, last = serving + 1, k
+        seen.add(k)
+        if len(seen) == n:
+            rounds, seen = rounds + 1, set()
+    return rounds, serving, len(here)
 
 
 class PatrolCourse:

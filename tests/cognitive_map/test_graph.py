@@ -58,6 +58,18 @@ def test_merge_uses_the_circular_mean_of_headings():
     assert g.structure_version == 1 and g.version == 3  # merges change attributes only
 
 
+def test_a_move_made_both_ways_has_no_direction():
+    g = TransitionGraph()
+    g.add_transition(0, 1, (math.radians(80), 10.0))
+    g.add_transition(0, 1, (math.radians(100), 10.0))
+    assert g.direction((0, 1), 0.5) == pytest.approx(math.radians(90))   # r = cos 10 deg
+    g.add_transition(0, 1, (math.radians(-90), 10.0))                    # and back: r = 0.32
+    assert g.direction((0, 1), 0.5) is None
+    assert g.direction((0, 1)) == pytest.approx(math.radians(90))        # no minimum
+    g.add_transition(1, 1, "wait")
+    assert g.direction((1, 1)) is None
+
+
 def test_merge_matches_batch_circular_mean_on_random_samples():
     rng = np.random.default_rng(7)
     for _ in range(20):

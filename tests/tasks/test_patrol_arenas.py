@@ -6,7 +6,13 @@ import pytest
 
 from hippo.sim import arenas
 from hippo.tasks import LapCounter, Route
-from hippo.tasks.patrol import ARENA_CHECKPOINTS, check_patrol, patrol_route, random_patrol
+from hippo.tasks.patrol import (
+    ARENA_CHECKPOINTS,
+    check_patrol,
+    patrol_rounds,
+    patrol_route,
+    random_patrol,
+)
 
 
 def test_a_route_through_two_rooms_visits_its_checkpoints_in_order():
@@ -101,3 +107,18 @@ def test_ground_truth_patrol_through_two_rooms_stops_at_its_checkpoints(tmp_path
     # the taught diagonals, and still meets every checkpoint
     assert m["checkpoint_stops_expected"] >= 6
     assert m["checkpoint_stops_made"] >= m["checkpoint_stops_expected"] - 2
+
+
+def test_patrol_rounds_count_every_checkpoint_served_in_any_order():
+    def made(seq, phase=4):
+        return [{"i0": i, "checkpoint": k, "drive": d, "phase": phase}
+                for i, (k, d) in enumerate(seq)]
+    # 0 1 2 | 2 1 0 2 (a round in the route's order, one in another order; the second stop
+    # at 2 running serves nothing)
+    assert patrol_rounds(made([(0, 0), (1, 1), (2, 2), (2, 2), (1, 1), (0, 0), (2, 2)]), 3,
+                         phase=4) == (2, 6, 7)
+    # a stop for another drive, or at the checkpoint just served, serves nothing
+    assert patrol_rounds(made([(0, 1), (0, 0), (0, 0), (1, 1)]), 2, phase=4) == (1, 2, 4)
+    # shuttling between two of three checkpoints: no round
+    assert patrol_rounds(made([(0, 0), (1, 1)] * 4), 3, phase=4) == (0, 8, 8)
+    assert patrol_rounds(made([(0, 0), (1, 1)], phase=3), 2, phase=4) == (0, 0, 0)
