@@ -34,9 +34,9 @@ def check_finite(name: str, value: Any, *, keep_float32: bool = False) -> np.nda
     if not (keep_float32 and arr.dtype == np.float32):
         try:
             arr = np.asarray(arr, dtype=float)
-        except (TypeError, ValueError) as exc:
-            raise ValueError(f"{name} must hold real numbers, got dtype {arr.dtype} "
-                             f"({exc})") from None
+        except (TypeError, ValueError) as exc:  # the same type (scikit-learn's convention)
+            raise type(exc)(f"{name} must hold real numbers, got dtype {arr.dtype} "
+                            f"({exc})") from None
     # one reduction on the hot path: a NaN or inf anywhere makes the sum non-finite
     if not math.isfinite(float(np.add.reduce(arr, axis=None))):
         bad = int(np.size(arr) - np.count_nonzero(np.isfinite(arr)))

@@ -79,7 +79,9 @@ class SweepFeatures:
 def sweep_features(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams | None = None,
                    *, workers: int | None = None, **overrides: Any) -> SweepFeatures:
     """Harvest ``U`` under every leak configuration over **one** reservoir, up to 16 at a time
-    (one matrix-matrix product per tick for the batch, BLAS on ``workers`` threads)."""
+    (one matrix-matrix product per tick for the batch, on one BLAS thread: on two threads the
+    product sums in another order, float32 states moved by up to 4e-7, and the free cores
+    follow the machine's load; ``workers`` is accepted for symmetry and changes no number)."""
     base = replace(params or RCSFAICAParams(), **overrides)
     if not base.use_reservoir:
         raise ValueError("a leak sweep needs use_reservoir=True")
@@ -91,10 +93,10 @@ def sweep_features(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams |
     N = base.n_reservoir
     A = np.stack([expand_leak(lk, N) for lk in leaks])
     Ud = template._decimator().offline(U)
-    k = min(n_workers(workers), len(leaks))
+    n_workers(workers)  # checked: the same argument as fit_leak_sweep's
     X: list[np.ndarray] = []
     for g in range(0, len(leaks), _SWEEP_BATCH):
-        S = res.run(Ud, leak=A[g:g + _SWEEP_BATCH], threads=k)  # (b, T, N)
+        S = res.run(Ud, leak=A[g:g + _SWEEP_BATCH], threads=1)  # (b, T, N)
         X.extend(with_pool(np.concatenate([Ud.astype(Sb.dtype), Sb], axis=1), base.slow_pool)[0]
                  for Sb in S)
         del S
@@ -106,7 +108,7 @@ def fit_leak_sweep(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams |
     """Fit one :class:`RCSFAICA` per leak configuration over **one** reservoir (same weights).
 
     The configurations are harvested together, up to 16 at a time (one matrix-matrix product
-    per tick for the batch, BLAS on ``workers`` threads); then ``workers`` threads (default: the
+    per tick for the batch, one BLAS thread); then ``workers`` threads (default: the
     usable cores), each with single-threaded BLAS, fit SFA and ICA for one configuration after
     another. ``leaks`` is a sequence of leak specs (each a float, k floats, or N floats). Returns
     the fitted models, in the order of ``leaks``, whose ``params.leak`` is the configuration

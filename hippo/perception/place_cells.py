@@ -54,7 +54,7 @@ import numpy as np
 
 from hippo._checks import as_array, check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
-from hippo._threads import blas_budget, blas_threads, single_threaded_blas
+from hippo._threads import single_threaded_blas
 from hippo.perception.ica import FastICA, output_stats
 from hippo.perception.place_cell_files import FORMAT, load_model, save_model
 from hippo.perception.place_cell_params import ICANN09, SMC09, RCSFAICAParams
@@ -208,11 +208,11 @@ class RCSFAICA(ParamsEstimator):
         stream when the states would take more than 256 MB. Applies to the linear SFA of a
         reservoir (the other forms hold their features).
 
-        Threads follow the one rule (:mod:`hippo._threads`): the stages that run one thing
-        (drawing the reservoir, solving SFA, ICA) get the free cores as BLAS threads; on busy
-        cores that is one thread, never a BLAS pool spinning against other processes.
+        BLAS runs on one thread throughout: products split over more threads sum in
+        another order, and the free cores follow the machine's load (same seed, same bits:
+        ICA's rotation moved by 1e-10 between a busy and a quiet machine).
         """
-        with blas_threads(blas_budget(1)):
+        with single_threaded_blas():
             return self._fit(U, stream)
 
     def _fit(self, U: np.ndarray, stream: bool | None) -> RCSFAICA:
