@@ -211,6 +211,9 @@ class SFA(PartFile, ParamsEstimator):
         total = parts[0] if len(parts) == 1 else parts[0].merged(parts[1])
         if total.n != T:
             raise ValueError(f"moments of {total.n} samples do not describe X ({T} rows)")
+        if not (np.isfinite(total.scatter).all() and np.isfinite(total.diff_scatter).all()):
+            raise ValueError("X's second moments overflow float64 (values too large to square "
+                             "and sum); rescale X")
         self.mean_ = total.mean
         sd = np.sqrt(np.maximum(np.diag(total.scatter) / total.n, 0.0))
         # constant columns: scale 1 (they become 0 and the cutoff drops them)

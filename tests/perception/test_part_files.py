@@ -185,10 +185,48 @@ def _bad(arrays, **change):
     ({"cutoff": np.array(2.0)}, r"cutoff=2 must lie in \(0, 1\)"),
     ({"n_whitened": np.array(1)}, r"n_whitened=1 must lie in \[3, 7\]"),
     ({"n_whitened": np.array(4.0)}, r"n_whitened must hold integers"),
+    ({"n_whitened": np.array([5])}, r"^n_whitened must have shape \(\), got \(1,\)$"),
+    ({"slowness": lambda a: a[:2]}, r"^slowness must have shape \(3,\), got \(2,\)$"),
+    ({"cutoff": np.array([1e-8])}, r"^cutoff must have shape \(\), got \(1,\)$"),
+    ({"cutoff": np.array(0.0)}, r"^cutoff=0 must lie in \(0, 1\)$"),
+    ({"cutoff": np.array(1.0)}, r"^cutoff=1 must lie in \(0, 1\)$"),
+    ({"cutoff": np.array(1.5)}, r"^cutoff=1.5 must lie in \(0, 1\)$"),
+    # scale at exactly 1e-12 (1 + |mean|) is refused, as fit would have set it to 1
+    ({"mean": lambda a: np.r_[0.0, a[1:]], "scale": lambda a: np.r_[1e-12, a[1:]]},
+     r"^scale must be > 0 everywhere \(above 1e-12 of the feature's mean, as fit leaves it\)$"),
+    ({"mean": lambda a: np.r_[1e6, a[1:]], "scale": lambda a: np.r_[1e-7, a[1:]]},
+     r"^scale must be > 0 everywhere \(above 1e-12 of the feature's mean"),
 ])
 def test_sfa_state_refuses_damage(change, message):
     with pytest.raises(ValueError, match=message):
         SFA.from_arrays(SFAParams(n_components=3), _bad(_sfa().to_arrays(), **change))
+
+
+def test_sfa_state_at_the_edges_of_what_fit_leaves_loads():
+    arrays = _sfa().to_arrays()
+    # a scale just above 1e-12 (1 + |mean|); n_whitened = n_components
+    edge = _bad(arrays, mean=lambda a: np.r_[0.0, a[1:]], scale=lambda a: np.r_[1.5e-12, a[1:]],
+                n_whitened=np.array(3))
+    sfa = SFA.from_arrays(SFAParams(n_components=3), edge)
+    assert sfa.scale_[0] == 1.5e-12 and sfa.n_whitened_ == 3
+
+
+def _quadratic_arrays():
+    X = _mixture(T=600, d=3)
+    return SFA(n_components=2, expansion="quadratic").fit(X).to_arrays()
+
+
+@pytest.mark.parametrize(("change", "kw", "message"), [
+    ({}, {"n_features_in": 4}, r"^pre_mean must have shape \(4,\), got \(3,\)$"),
+    ({"pre_scale": lambda a: a[:2]}, {}, r"^pre_scale must have shape \(3,\), got \(2,\)$"),
+    ({"pre_scale": lambda a: np.r_[a[:2], 0.0]}, {}, r"^pre_scale must be > 0 everywhere$"),
+    ({"mean": lambda a: a[:-1]}, {}, r"^mean must have shape \(9,\), got \(8,\)$"),
+    ({"n_whitened": np.array(10)}, {}, r"^n_whitened=10 must lie in \[2, 9\]$"),
+])
+def test_quadratic_sfa_state_refuses_damage(change, kw, message):
+    with pytest.raises(ValueError, match=message):
+        SFA.from_arrays(SFAParams(n_components=2, expansion="quadratic"),
+                        _bad(_quadratic_arrays(), **change), **kw)
 
 
 def test_sfa_state_must_fit_the_given_input_width_and_expansion():

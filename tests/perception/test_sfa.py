@@ -162,6 +162,17 @@ def test_auto_cutoff_scores_are_the_held_out_slowness_and_the_lowest_wins():
     assert sfa.cutoff_ == min(want, key=want.get)
 
 
+def test_auto_cutoff_score_is_a_ratio_however_quiet_the_held_out_part():
+    # the last 20 % at 1 % of the amplitude: held-out sum(y^2) ~ 0.04, far below 1, and the
+    # score, a ratio, is the same as at full amplitude
+    X, _ = _mixture(T=2000, seed=5)
+    X[1600:] = X[1600:].mean(axis=0) + 1e-2 * (X[1600:] - X[1600:].mean(axis=0))
+    sfa = SFA(n_components=2, cutoff="auto").fit(X)
+    for c, s in sfa.cutoff_scores_.items():
+        assert s == pytest.approx(_held_out_score(X, c, 2), rel=1e-6), c
+    assert min(sfa.cutoff_scores_.values()) > 1e-3
+
+
 def test_auto_cutoff_ties_go_to_the_largest_candidate():
     # well-conditioned input: every candidate keeps every direction, all scores are equal, and
     # the most conservative cutoff (1e-3, the first candidate) is kept
