@@ -56,7 +56,8 @@ DEFAULT_TESTS: dict[str, list[str]] = {
                                       "tests/perception/test_torch_backend.py", PART_FILES],
     "hippo/perception/backends.py": ["tests/perception/test_reservoir.py",
                                      "tests/perception/test_backends.py"],
-    "hippo/perception/states.py": ["tests/perception/test_states.py"],
+    "hippo/perception/states.py": ["tests/perception/test_states.py",
+                                   "tests/perception/test_state_ids.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
