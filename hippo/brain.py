@@ -144,6 +144,12 @@ class Brain:
                          doc="the place (or colour) entered before the current one")
     current = property(lambda self: self.decide.current, doc="the transition executed")
 
+    def entered_since(self, state: int) -> float | None:
+        """When the place (or colour) ``state`` was last entered in this episode (None: not
+        since the last lift or reset)."""
+        e = self._entries.get(state)
+        return None if e is None else e[0]
+
     # -- episode bookkeeping ------------------------------------------------------------------
     def _reset_episode(self) -> None:
         self.state: int | None = None

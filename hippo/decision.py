@@ -15,7 +15,8 @@ the last move — and changes it at sensory events and every tick:
   rises (the learned delay), a wait on an external event (the sound) when the non-occurrence
   neuron fires. Either way the drives linked to the wait are inhibited until the robot
   reaches a place from which that stop is not one transition away.
-- :meth:`Decider.recognise_stop` — soft recognition of a wanted stop's place (``coactive``).
+- :meth:`Decider.recognise_stop` — soft recognition of a wanted stop's place (``coactive``,
+  ``aliases``: :mod:`hippo.soft_recognition`).
 - habituation — entering one place ``cycle_visits`` times within ``cycle_window`` s while a
   drive is active makes the robot explore for ``cycle_explore`` s.
 
@@ -28,18 +29,18 @@ from __future__ import annotations
 
 import math
 from collections import deque
-from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
 
 from hippo.runups import RunupRules
+from hippo.soft_recognition import SoftRecognition
 from hippo.types import Mode, StateKind, Transition, wrap_angle
 
 __all__ = ["Decider"]
 
 
-class Decider(RunupRules):
+class Decider(SoftRecognition, RunupRules):
     """The decision rules of one brain (see the module docstring).
 
     ``brain``: the :class:`~hippo.brain.Brain` it decides for (this module does not import
@@ -261,75 +262,11 @@ class Decider(RunupRules):
         return float(act.values[act.index.pos[tr]])
 
     # -- every tick ---------------------------------------------------------------------------
-    def recognise_stop(self) -> None:
-        """Soft recognition of a wanted stop's place (``coactive``).
-
-        Learned place cells often split one stretch of track between two prototypes that
-        alternate from lap to lap; the place a stop was taught in then does not win on every
-        pass. While moving with an active drive whose stop is bound to place ``C``, the robot
-        approaches that stop when ``C``'s activity is close to the winner's (``coactive`` ×
-        the most active place) and the map would choose that stop on entering ``C`` (its drive
-        beats those of the moves out of ``C``)."""
-        b = self.b
-        p = b.p
-        if self.mode != Mode.MOVE or b.state is None or self._runup_due() or p.coactive <= 0:
-            return
-        acts = b.layer.place_activity
-        if acts.size == 0:
-            return
-        top = float(acts.max())
-        here = b.state if b.kind(b.state) == StateKind.PLACE else None
-        for name in b.drives.names:
-            if not self._wanted(name):
-                continue
-            for c, a in self._taught_stops(name):
-                kc = b.layer.key(c)
-                if (c == b.state or kc.kind != StateKind.PLACE
-                        or kc.index >= acts.size):  # type: ignore[operator]
-                    continue
-                alias = p.aliases and here is not None and self.alias_of(here, c)
-                if float(acts[kc.index]) < p.coactive * top and not alias:  # type: ignore[index]
-                    continue
-                # only if the map would choose that stop on entering C (drives compete)
-                if max(b.graph.outgoing(c), key=self._activity) != (c, a):
-                    continue
-                self.current, self.current_since = (c, a), b.t
-                # timed from the recognition, or from entering the alias (as if it were C)
-                self.mode, self._approach_t0 = Mode.APPROACH, b.entered_at if alias else b.t
-                self._entry_timed = bool(alias)
-                return
-
     def _wanted(self, name: str) -> bool:
         """Is drive ``name`` free (not held by a finished wait) and active?"""
         b = self.b
         return (not b.drives.is_inhibited(name)
                 and b.drives.level(name) >= b.p.planner.exploration_threshold)
-
-    def _taught_stops(self, name: str) -> Iterator[tuple[int, int]]:
-        """The stops ``C -> still@C`` in the map that drive ``name`` is linked to (through
-        its wait ``still@C -> ...``), as ``(C, still@C)``."""
-        b = self.b
-        for a, _ in b.drives.links(name):
-            ka = b.layer.key(a)
-            c = ka.context
-            if (ka.kind == StateKind.STILL and c is not None and b.graph.has_state(c)
-                    and (c, a) in b.graph):
-                yield c, a
-
-    def alias_of(self, place: int, c: int) -> bool:
-        """Does ``place``, just entered, stand in for place ``c`` this time: did the robot come
-        from a place ``p`` after which the map has met ``c`` at least twice (``p -> c``), but
-        this time entered ``place`` instead? Learned place cells often code one stretch of track
-        by one prototype on some laps and by another on others; the sequence context (where
-        the robot came from) tells such a stand-in from a place elsewhere that merely looks
-        alike (the idea of clone-structured cognitive graphs, George et al. 2021, turned round:
-        two observations in one sequence context are one location)."""
-        b = self.b
-        p = b.came_from
-        if place == c or p is None or p in (place, c) or b.state != place:
-            return False
-        g = b.graph
-        return (p, c) in g and (p, place) in g and g.count((p, c)) >= 2
 
     def check_wait(self) -> None:
         """End an approach (stop) or a wait when its time is over (see the module docstring)."""

@@ -276,6 +276,35 @@ def test_a_place_entered_where_another_usually_follows_stands_in_for_it():
     assert brain.came_from == a and not brain.decide.alias_of(b, c)
 
 
+@pytest.mark.parametrize(("in_c", "tolerance", "stands_in"), [
+    (15, 0.5, True),        # B entered 3 s after C, as A usually is (the map's delay 3.3 s)
+    (22, 0.5, True),        # 4.4 s: within x 1.5 of it
+    (27, 0.5, False),       # 5.4 s: A was due long ago
+    (9, 0.5, False),        # 1.8 s: too early for A (a place before it, not a stand-in)
+    (12, 0.5, True),        # 2.4 s: within / 1.5
+    (3, 1e9, True),         # (almost) no timing condition
+])
+def test_a_stand_in_must_come_when_the_place_it_stands_for_is_due(in_c, tolerance, stands_in):
+    # the map learned C -> A twice (3.6 s in C from the first tick, then 3 s: delay 3.3 s);
+    # this time B wins after in_c ticks in C
+    brain, run = make(alias_tolerance=tolerance)
+    for where in "CACA":
+        run.ticks(15, where, moving=True)
+    run.ticks(in_c, "C", moving=True)
+    run.ticks(15, "B", moving=True)
+    a, b, c = (brain.layer.find("place", i) for i in range(3))
+    assert brain.state == b and brain.came_from == c
+    assert brain.entered_at - brain.entered_since(c) == pytest.approx(in_c * 0.2)
+    assert brain.graph.delay((c, a)) == pytest.approx(3.3)
+    assert brain.decide.alias_of(b, a) is stands_in
+
+
+@pytest.mark.parametrize("bad", [0.0, -0.5, float("nan")])
+def test_alias_tolerance_must_be_positive(bad):
+    with pytest.raises(ValueError, match="alias_tolerance"):
+        BrainParams(alias_tolerance=bad)
+
+
 def taught(**params) -> tuple[Brain, Run]:
     """A stop at A taught 65 cm after a rewarded wait (the anchor), rewarded as it ends."""
     brain, run = make(**params)
