@@ -97,6 +97,23 @@ class StateLayer:
         self._n_place0 = int(n_place)
         self.reset()
 
+    @property
+    def activity(self) -> dict[int, float]:
+        """State id -> activity at the last step: every place state's, and the winner's (an
+        event state's level, or a context state's: the most active of its units)."""
+        got = self._activity
+        if got is None:
+            ids, pa, winner, own = self._activity_of
+            got = dict(zip(ids.tolist(), pa.tolist()))
+            if own is not None:
+                got[winner] = own
+            self._activity = got
+        return got
+
+    @activity.setter
+    def activity(self, value: dict[int, float]) -> None:
+        self._activity = value
+
     # ---------------------------------------------------------------- registry
     def reset(self, *, keep_states: bool = False) -> None:
         """Restart the competition (and, unless ``keep_states``, forget every state id)."""
@@ -129,7 +146,7 @@ class StateLayer:
         self._onset_t: dict[int, float] = {}
         self._pool = (0.0, 1.0)
         self.place_activity = np.zeros(self._place_ids.size)
-        self.activity: dict[int, float] = {}
+        self.activity = {}
 
     def recruit(self, kind: str, index: int | None = None, context: int | None = None) -> int:
         """Id of the state ``(kind, index, context)``, registering it if new."""
@@ -404,10 +421,14 @@ class StateLayer:
                 self._candidate = new   # becomes the context once it has held the win
             else:
                 self._candidate = None  # an event state took over: the candidate never held
-        self.activity = dict(zip(self._place_ids.tolist(), pa.tolist()))
+        # the activities by state id, built when :attr:`activity` is read (most ticks nobody
+        # does): the place units' and, when it is not a plain place, the winner's level
         if self._keys[self.winner].kind != "place":
-            self.activity[self.winner] = self._event_level(self.winner, snd, col, mov)
+            own = self._event_level(self.winner, snd, col, mov)
         elif self.winner in self._clone_of:
-            self.activity[self.winner] = max(pa.item(u) for u in self._units(self.winner))
+            own = max(pa.item(u) for u in self._units(self.winner))
+        else:
+            own = None
+        self._activity, self._activity_of = None, (self._place_ids, pa, self.winner, own)
         novel = not (pa.size and float(np.maximum.reduce(pa)) >= p.recruit_threshold)
         return StateEvent(self.t, int(self.winner), bool(changed), previous, self.since, novel)

@@ -234,13 +234,17 @@ class TransitionCells:
         with :math:`\eta_b = 0` do not change, so only the others are re-read.
         """
         p = self.params.nlms
-        us = (self._target[rows] == winner).astype(float)
-        eta = learning_modulation(us, self._m[self._target_slot[rows]], p.sigma2)
-        learning = eta > 0.0
-        if not np.count_nonzero(learning):
+        m, target, slot = self._m, self._target, self._target_slot
+        # X^US and eq. 2 row by row on plain floats (a handful of rows: the same IEEE
+        # operations as on arrays, without an array's overhead)
+        rl = rows.tolist()
+        us = [1.0 if target.item(r) == winner else 0.0 for r in rl]
+        eta = [learning_modulation(u, m.item(slot.item(r)), p.sigma2) for u, r in zip(us, rl)]
+        learning = [r for r, e in zip(rl, eta) if e > 0.0]
+        if not learning:
             return
-        self._w[rows], _ = nlms_update(self._w[rows], cs, us, eta, p, dt)
-        self._refresh(rows[learning])
+        self._w[rows], _ = nlms_update(self._w[rows], cs, np.array(us), np.array(eta), p, dt)
+        self._refresh(rows if len(learning) == len(rl) else np.array(learning, dtype=np.intp))
 
     def step(self, battery: BatteryState, dt: float, *, learn_event: bool = True
              ) -> dict[Key, TransitionReadout]:
@@ -338,9 +342,9 @@ class TransitionCells:
         preds = (self._w[rows] @ activity).tolist()
         lead = self.params.anticipation + self.params.latency
         strong = self.params.min_strength
-        keys, out = self._keys, {}
-        for r, x, d, s in zip(rows.tolist(), preds, self._delay[rows].tolist(),
-                              self._strength[rows].tolist()):
+        keys, delay, strength, out = self._keys, self._delay, self._strength, {}
+        for r, x in zip(rows.tolist(), preds):
+            d, s = delay.item(r), strength.item(r)
             frac = elapsed / d  # a row whose weights are silent has T = nan: never over
             out[keys[r]] = TransitionReadout(keys[r], x, s, d, frac,
                                              s >= strong and frac >= 1.0 - lead / d)

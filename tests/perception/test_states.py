@@ -375,3 +375,23 @@ def test_context_params_reach_the_context_states():
 
     cp = ContextParams(min_count=9, max_depth=2)
     assert StateLayer(StateLayerParams(contexts=cp)).contexts.params == cp
+
+
+def test_activity_is_each_ticks_levels_however_late_it_is_read():
+    """``activity`` (built only when read) is the dict of that tick: the place states'
+    levels and the winner's own; read after a later step it is the later tick's, never a
+    stale one, and a dict written in (a restored snapshot) is what is read."""
+    layer = StateLayer()
+    rng = np.random.default_rng(1)
+    for t in range(60):
+        acts = rng.random(4)
+        ev = layer.step(acts, colour=2 if 20 <= t < 30 else 0, dt=DT)
+        if t % 3:
+            continue  # not read on every tick: the next read must still be this tick's
+        want = dict(zip(layer._place_ids.tolist(), layer.place_activity.tolist()))
+        if layer.key(ev.winner).kind == "colour":
+            want[ev.winner] = 1.0
+        assert layer.activity == want
+        assert layer.activity is layer.activity  # built once per tick
+    layer.activity = {7: 0.5}
+    assert layer.activity == {7: 0.5}
