@@ -51,12 +51,16 @@ from hippo.types import GroundTruth, Mode, Observation, StateKind, Transition, w
 __all__ = ["Brain", "BrainParams", "Perception", "Tick"]
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class Perception:
     """The neural chain's part of a tick: the state layer's event and the timing chain's step."""
 
     event: StateEvent
     timing: TimingStep
+
+    def __init__(self, event: StateEvent, timing: TimingStep) -> None:
+        # one a tick: the fields written straight into the instance's dict
+        self.__dict__["event"], self.__dict__["timing"] = event, timing
 
 
 @dataclass(frozen=True, slots=True)

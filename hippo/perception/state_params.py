@@ -102,7 +102,7 @@ class StateLayerParams:
         check_positive("context_time", self.context_time, allow_zero=True)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class StateEvent:
     """Outcome of one tick of the state layer.
 
@@ -118,6 +118,14 @@ class StateEvent:
     previous: int | None
     since: float
     novel: bool
+
+    def __init__(self, t: float, winner: int, changed: bool, previous: int | None, since: float,
+                 novel: bool) -> None:
+        # one a tick: the fields written straight into the instance's dict (a frozen
+        # dataclass's own __init__ calls object.__setattr__ once per field)
+        d = self.__dict__
+        d["t"], d["winner"], d["changed"] = t, winner, changed
+        d["previous"], d["since"], d["novel"] = previous, since, novel
 
 
 def _flag(name: str, value: object) -> bool | None:

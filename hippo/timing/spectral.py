@@ -68,7 +68,7 @@ class SpectralParams:
         check_range("readout_fraction", self.readout_fraction, 0.0, 1.0, closed="left")
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class BatteryState:
     """The battery after one tick.
 
@@ -86,6 +86,16 @@ class BatteryState:
     previous: int | None = None
     previous_tau: float = math.nan
     previous_activity: np.ndarray | None = field(default=None, repr=False)
+
+    def __init__(self, state: int, tau: float, activity: np.ndarray, changed: bool,
+                 previous: int | None = None, previous_tau: float = math.nan,
+                 previous_activity: np.ndarray | None = None) -> None:
+        # one a tick: the fields written straight into the instance's dict (a frozen
+        # dataclass's own __init__ calls object.__setattr__ once per field)
+        d = self.__dict__
+        d["state"], d["tau"], d["activity"], d["changed"] = state, tau, activity, changed
+        d["previous"], d["previous_tau"], d["previous_activity"] = (
+            previous, previous_tau, previous_activity)
 
 
 _CALIBRATIONS: dict[SpectralParams, tuple[np.ndarray, np.ndarray]] = {}

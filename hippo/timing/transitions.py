@@ -95,7 +95,7 @@ class TransitionParams:
         check_positive("latency", self.latency, allow_zero=True)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class TransitionReadout:
     """One transition at one tick (only transitions out of the current winner are read out).
 
@@ -112,6 +112,15 @@ class TransitionReadout:
     learned_delay: float
     elapsed_fraction: float
     delay_over: bool
+
+    def __init__(self, key: Key, prediction: float, strength: float, learned_delay: float,
+                 elapsed_fraction: float, delay_over: bool) -> None:
+        # several are built every tick: the fields written straight into the instance's dict
+        # (a frozen dataclass's own __init__ calls object.__setattr__ once per field)
+        d = self.__dict__
+        d["key"], d["prediction"], d["strength"] = key, prediction, strength
+        d["learned_delay"], d["elapsed_fraction"], d["delay_over"] = (
+            learned_delay, elapsed_fraction, delay_over)
 
 
 class TransitionCells:
