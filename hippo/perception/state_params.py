@@ -129,8 +129,8 @@ class StateEvent:
 
 
 def _flag(name: str, value: object) -> bool | None:
-    if value is None:
-        return None
+    if value is None or value is True or value is False:  # the usual case (every tick)
+        return value  # type: ignore[return-value]
     if isinstance(value, (bool, np.bool_)):
         return bool(value)
     v = float(check_finite(name, value))

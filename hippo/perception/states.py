@@ -332,7 +332,7 @@ class StateLayer:
         since the previous tick (> 0).
         """
         dt = check_positive("dt", dt)
-        snd = bool(_flag("sound", sound))
+        snd = sound if sound is True or sound is False else bool(_flag("sound", sound))
         mov = _flag("moving", moving)
         col = _colour(colour)
         pa = self._places(place, dt)
@@ -393,8 +393,8 @@ class StateLayer:
         if new is None and self.winner is not None and pa.size:
             wk = self._keys[self.winner]
             units = self._units(self.winner)
-            w_act = (max(pa.item(u) for u in units) if wk.kind == "place"
-                     else self._event_level(self.winner, snd, col, mov))
+            w_act = ((pa.item(units[0]) if len(units) == 1 else max(pa.item(u) for u in units))
+                     if wk.kind == "place" else self._event_level(self.winner, snd, col, mov))
             beating = pa > w_act + p.margin
             for u in units:  # (empty unless the winner is a place)
                 beating[u] = False

@@ -152,6 +152,9 @@ class TransitionCells:
     #: NLMS step was checked stable (class defaults: a snapshot saved without them loads)
     _settled_at = -1
     _checked: tuple = (None, None)
+    #: row -> (T, X(T)): the battery at a row's learned delay, kept while the delay is the same
+    #: (a row that learns a little keeps its delay on ~40 % of ticks); None until first used
+    _at_delay: dict | None = None
 
     def __init__(self, timing: SpectralTiming, params: TransitionParams | None = None) -> None:
         if not isinstance(timing, SpectralTiming):
@@ -219,8 +222,15 @@ class TransitionCells:
             w = self._w[r]
             d = self.timing._readout(w)
             self._delay[r] = d
-            self._strength[r] = 0.0 if math.isnan(d) else float(
-                np.einsum("rj,rj->r", w[None], self.timing._tuning(d)[None])[0])
+            if math.isnan(d):
+                self._strength[r] = 0.0
+                return
+            if self._at_delay is None:
+                self._at_delay = {}
+            kept = self._at_delay.get(r)
+            if kept is None or kept[0] != d:
+                kept = self._at_delay[r] = (d, self.timing._tuning(d))
+            self._strength[r] = float(np.einsum("rj,rj->r", w[None], kept[1][None])[0])
             return
         w = self._w[rows]
         d = self.timing._readouts(w)

@@ -293,3 +293,25 @@ def test_learning_on_plain_floats_is_the_array_form_bit_for_bit(sigma2: float):
         np.testing.assert_array_equal(fast._strength[:n], ref._strength[:n])
     assert len(fast.transitions) > 15
     assert partial > 50 or sigma2 > 0  # rows learning next to rows that do not
+
+
+def test_refresh_keeps_the_battery_at_a_delay_only_while_the_delay_is_the_same():
+    """The one-row refresh keeps X(T) per row; a row whose delay moved is read at its new
+    delay (a kept X of the old delay would give another strength)."""
+    timing = SpectralTiming()
+    cells = TransitionCells(timing)
+    for winner in [0] * 20 + [1] * 30 + [0] * 20 + [1] * 3:
+        cells.step(timing.step(winner, 0.2), 0.2)
+    r = cells._index[(0, 1)]
+
+    def want(w: np.ndarray) -> tuple[float, float]:
+        d = timing._readouts(w[None])
+        return d[0], np.einsum("rj,rj->r", w[None], timing._tuning(d))[0]
+
+    for w in (timing.tuning(4.0) * 0.8, timing.tuning(4.0) * 0.4,   # same delay, kept X
+              timing.tuning(9.0) * 0.8, timing.tuning(4.0) * 0.8):  # delay moved (and back)
+        cells._w[r] = w
+        cells._refresh(np.array([r]))
+        d, s = want(w)
+        assert cells._delay[r] == d and cells._strength[r] == s
+        assert cells._at_delay[r][0] == d
