@@ -111,9 +111,10 @@ class NonOccurrence:
             raise ValueError(f"predictions must be a mapping key -> prediction, got "
                              f"{type(predictions).__name__}")
         p = self.params
-        for gone in [k for k in self.peak if k not in predictions]:
-            del self.peak[gone]
-            self._active.discard(gone)
+        if not self.peak.keys() <= predictions.keys():  # (most ticks: no trace ended)
+            for gone in [k for k in self.peak if k not in predictions]:
+                del self.peak[gone]
+                self._active.discard(gone)
         fired = []
         peaks, active = self.peak, self._active
         for key, value in predictions.items():

@@ -282,7 +282,7 @@ class TransitionCells:
             dt = self._check_dt(dt)
         p = self.params.nlms
         winner = check_state_id("battery.state", battery.state)
-        if battery.activity.shape != (self.timing.n_cells,):
+        if battery.activity.shape != self.timing.mu.shape:  # (n_cells,)
             raise ValueError(f"battery.activity must have shape ({self.timing.n_cells},), "
                              f"got {battery.activity.shape}")
         # eq. 3 for every known state: X^US_b(t) = 1 for the winner, 0 otherwise. Between
