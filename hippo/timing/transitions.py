@@ -152,9 +152,10 @@ class TransitionCells:
     #: NLMS step was checked stable (class defaults: a snapshot saved without them loads)
     _settled_at = -1
     _checked: tuple = (None, None)
-    #: row -> (T, X(T)): the battery at a row's learned delay, kept while the delay is the same
-    #: (a row that learns a little keeps its delay on ~40 % of ticks); None until first used
+    #: row -> (T, X(T)), the battery at a row's learned delay kept while T is the same
     _at_delay: dict | None = None
+    #: (rows, W[rows]) just learned this tick: the readout that follows reads the same block
+    _learned: tuple | None = None
 
     def __init__(self, timing: SpectralTiming, params: TransitionParams | None = None) -> None:
         if not isinstance(timing, SpectralTiming):
@@ -222,14 +223,13 @@ class TransitionCells:
             w = self._w[r]
             d = self.timing._readout(w)
             self._delay[r] = d
-            if math.isnan(d):
+            if math.isnan(d):  # silent weights
                 self._strength[r] = 0.0
                 return
-            if self._at_delay is None:
-                self._at_delay = {}
-            kept = self._at_delay.get(r)
+            memo = self._at_delay = self._at_delay if self._at_delay is not None else {}
+            kept = memo.get(r)
             if kept is None or kept[0] != d:
-                kept = self._at_delay[r] = (d, self.timing._tuning(d))
+                kept = memo[r] = (d, self.timing._tuning(d))
             self._strength[r] = float(np.einsum("rj,rj->r", w[None], kept[1][None])[0])
             return
         w = self._w[rows]
@@ -262,7 +262,8 @@ class TransitionCells:
         learning = [r for r, e in zip(rl, eta) if e > 0.0]
         if not learning:
             return
-        self._w[rows], _ = nlms_update(self._w[rows], cs, np.array(us), np.array(eta), p, dt)
+        w = nlms_update(self._w[rows], cs, np.array(us), np.array(eta), p, dt)[0]
+        self._w[rows], self._learned = w, (rows, w)
         self._refresh(rows if len(learning) == len(rl) else np.array(learning, dtype=np.intp))
 
     def step(self, battery: BatteryState, dt: float, *, learn_event: bool = True
@@ -345,9 +346,10 @@ class TransitionCells:
         ``delay_over = [s_ab >= min_strength] and [tau_hat / T_ab >= 1 - lead / T_ab]``,
         ``tau_hat`` the population readout of the battery (inf when it is silent). Those are a
         few scalars per row, taken as plain floats (the same IEEE operations as array ones,
-        without an array's overhead on a handful of rows).
+        without an array's overhead on a handful of rows). Rows that learned this tick are read
+        from the block the learning step made (the numbers a gather of them gives).
         """
-        rows = self._out.get(a)
+        rows, (kept, self._learned) = self._out.get(a), (self._learned, None)
         if rows is None:
             self.elapsed = math.nan
             return {}
@@ -358,7 +360,8 @@ class TransitionCells:
         if math.isnan(elapsed):  # a silent battery: longer than any cell can time
             elapsed = math.inf
         self.elapsed = elapsed
-        preds = (self._w[rows] @ activity).tolist()
+        preds = ((kept[1] if kept is not None and kept[0] is rows else self._w[rows])
+                 @ activity).tolist()
         lead = self.params.anticipation + self.params.latency
         strong = self.params.min_strength
         keys, delay, strength, out = self._keys, self._delay, self._strength, {}

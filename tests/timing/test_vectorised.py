@@ -315,3 +315,24 @@ def test_refresh_keeps_the_battery_at_a_delay_only_while_the_delay_is_the_same()
         d, s = want(w)
         assert cells._delay[r] == d and cells._strength[r] == s
         assert cells._at_delay[r][0] == d
+
+
+def test_the_block_just_learned_is_read_that_tick_and_never_after():
+    """The readout reads the rows learned this tick from the block the learning step made
+    (the same numbers as a fresh gather) and drops it: no block survives into a later tick."""
+    timing = SpectralTiming()
+    cells = TransitionCells(timing)
+    rng = np.random.default_rng(12)
+    used = 0
+    for winner in np.repeat(rng.integers(0, 5, 100), rng.integers(2, 30, 100)):
+        orig = cells._learned
+        assert orig is None
+        got = cells.step(timing.step(int(winner), 0.2), 0.2)
+        rows = cells._out.get(int(winner))
+        assert cells._learned is None
+        if rows is None:
+            continue
+        want = (cells._w[rows] @ timing.activity).tolist()
+        assert [got[cells._keys[r]].prediction for r in rows] == want
+        used += 1
+    assert used > 1000
