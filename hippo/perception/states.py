@@ -269,8 +269,12 @@ class StateLayer:
 
     # ---------------------------------------------------------------- competition
     def _places(self, place: object, dt: float) -> np.ndarray:
+        p = self.params
         if place is None:
             a = np.zeros(0)
+        elif (p.normalize == "pooled" and type(place) is np.ndarray and place.ndim == 1
+              and place.dtype == np.float64 and 0 < place.size == self._place_ids.size):
+            a = place  # checked by the pooled mean's sum below: a NaN or inf makes it so
         else:
             a = check_finite("place activities", place)
             if a.ndim != 1:
@@ -280,7 +284,6 @@ class StateLayer:
                              f"{a.size} units; place states are never removed")
         if a.size > self._place_ids.size:
             self._add_places(a.size - self._place_ids.size)
-        p = self.params
         rate = min(dt / p.norm_tau, 1.0)
         if p.normalize == "unit":
             z = (a - self._mean) / np.sqrt(self._var)
@@ -290,9 +293,12 @@ class StateLayer:
         elif p.normalize == "pooled" and a.size:
             mean, var = self._pool
             d = a - mean
+            total = float(np.add.reduce(d))
+            if not math.isfinite(total):  # names a NaN or inf (finite values that overflow pass)
+                check_finite("place activities", a)
             z = d / math.sqrt(var)
             # the means as np.mean takes them (sum / count), without its wrapper
-            m = mean + rate * (float(np.add.reduce(d)) / d.size)
+            m = mean + rate * (total / d.size)
             v = max((1.0 - rate) * (var + rate * (float(np.add.reduce(d * d)) / d.size)), 1e-12)
             self._pool = (m, v)
         else:
