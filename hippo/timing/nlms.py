@@ -91,7 +91,7 @@ def nlms_update(w: np.ndarray, cs: np.ndarray, us: np.ndarray, eta: np.ndarray,
     x = w @ cs
     norm = float(cs @ cs) + params.sigma1
     err = (us - x)[:, None] * cs / norm  # the outer product
-    if us.any():
+    if np.count_nonzero(us):  # (any US; ndarray.any costs ~5 x as much on a few rows)
         err = err - params.leak * us[:, None] * w
     dw = params.alpha * eta[:, None] * err
     return w + dt * dw, x

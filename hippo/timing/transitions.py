@@ -232,7 +232,7 @@ class TransitionCells:
                 kept = memo[r] = (d, self.timing._tuning(d))
             self._strength[r] = float(np.einsum("rj,rj->r", w[None], kept[1][None])[0])
             return
-        w = self._w[rows]
+        w = self._w.take(rows, axis=0)  # (W[rows]: a row gather by take is ~3 x faster)
         d = self.timing._readouts(w)
         ok = ~np.isnan(d)
         if ok.all():  # the usual case: no row to mask out
@@ -262,7 +262,7 @@ class TransitionCells:
         learning = [r for r, e in zip(rl, eta) if e > 0.0]
         if not learning:
             return
-        w = nlms_update(self._w[rows], cs, np.array(us), np.array(eta), p, dt)[0]
+        w = nlms_update(self._w.take(rows, axis=0), cs, np.array(us), np.array(eta), p, dt)[0]
         self._w[rows], self._learned = w, (rows, w)
         self._refresh(rows if len(learning) == len(rl) else np.array(learning, dtype=np.intp))
 
@@ -360,7 +360,7 @@ class TransitionCells:
         if math.isnan(elapsed):  # a silent battery: longer than any cell can time
             elapsed = math.inf
         self.elapsed = elapsed
-        preds = ((kept[1] if kept is not None and kept[0] is rows else self._w[rows])
+        preds = ((kept[1] if kept is not None and kept[0] is rows else self._w.take(rows, axis=0))
                  @ activity).tolist()
         lead = self.params.anticipation + self.params.latency
         strong = self.params.min_strength
