@@ -210,7 +210,7 @@ class TransitionCells:
         self._out[key[0]] = np.append(self._out.get(key[0], np.zeros(0, dtype=np.intp)), row)
         return row
 
-    def _refresh(self, rows: np.ndarray) -> None:
+    def _refresh(self, rows: np.ndarray | list[int]) -> None:
         r"""Re-read the learned delay and strength of ``rows`` after their weights changed.
 
         :math:`T_r = \mathrm{readout}(W_r)` (the population readout of the delay stored in the
@@ -218,7 +218,7 @@ class TransitionCells:
         for a row whose weights are silent), for all rows at once (one row, the usual case
         between events, by the one-row readout: the same numbers).
         """
-        if rows.size == 1:
+        if len(rows) == 1:
             r = int(rows[0])
             w = self._w[r]
             d = self.timing._readout(w)
@@ -264,7 +264,7 @@ class TransitionCells:
             return
         w = nlms_update(self._w.take(rows, axis=0), cs, np.array(us), np.array(eta), p, dt)[0]
         self._w[rows], self._learned = w, (rows, w)
-        self._refresh(rows if len(learning) == len(rl) else np.array(learning, dtype=np.intp))
+        self._refresh(learning)
 
     def step(self, battery: BatteryState, dt: float, *, learn_event: bool = True
              ) -> dict[Key, TransitionReadout]:
