@@ -317,10 +317,10 @@ class TransitionCells:
                 self._learn(rows, battery.previous_activity, winner, dt)
         else:
             # between events X^US = 0 on every row out of the winner, so eta = m^US + sigma2:
-            # with sigma2 = 0 no row learns unless the target of one was active lately
+            # with sigma2 = 0 no row learns unless the target of one was active lately (_learn
+            # finds that out on its per-row floats and returns)
             rows = self._out.get(winner)
-            if rows is not None and not settled and (
-                    p.sigma2 != 0.0 or np.count_nonzero(self._m[self._target_slot[rows]])):
+            if rows is not None and not settled:
                 self._learn(rows, battery.activity, winner, dt)
         self.state = winner
         self.readouts = self._read(winner, battery.activity)
