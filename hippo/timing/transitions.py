@@ -250,7 +250,7 @@ class TransitionCells:
 
         :math:`X^{US}_b = [b = \text{winner}]`, :math:`\eta_b = |X^{US}_b - m^{US}_b| + \sigma_2`
         (``m^US`` already updated this tick), then one Euler step of eq. 1 on those rows. Rows
-        with :math:`\eta_b = 0` do not change, so only the others are re-read.
+        with :math:`\eta_b = 0` do not change: only the others are written back and re-read.
         """
         p = self.params.nlms
         m, target, slot = self._m, self._target, self._target_slot
@@ -259,12 +259,14 @@ class TransitionCells:
         rl = rows.tolist()
         us = [1.0 if target.item(r) == winner else 0.0 for r in rl]
         eta = [learning_modulation(u, m.item(slot.item(r)), p.sigma2) for u, r in zip(us, rl)]
-        learning = [r for r, e in zip(rl, eta) if e > 0.0]
+        learning = [(i, r) for i, (r, e) in enumerate(zip(rl, eta)) if e > 0.0]
         if not learning:
             return
         w = nlms_update(self._w.take(rows, axis=0), cs, np.array(us), np.array(eta), p, dt)[0]
-        self._w[rows], self._learned = w, (rows, w)
-        self._refresh(learning)
+        for i, r in learning:  # (a row with eta = 0 is unchanged: w + dt * 0)
+            self._w[r] = w[i]
+        self._learned = (rows, w)
+        self._refresh([r for _, r in learning])
 
     def step(self, battery: BatteryState, dt: float, *, learn_event: bool = True
              ) -> dict[Key, TransitionReadout]:
@@ -317,8 +319,7 @@ class TransitionCells:
                 self._learn(rows, battery.previous_activity, winner, dt)
         else:
             # between events X^US = 0 on every row out of the winner, so eta = m^US + sigma2:
-            # with sigma2 = 0 no row learns unless the target of one was active lately (_learn
-            # finds that out on its per-row floats and returns)
+            # with sigma2 = 0 no row learns unless the target of one was active lately
             rows = self._out.get(winner)
             if rows is not None and not settled:
                 self._learn(rows, battery.activity, winner, dt)
