@@ -11,13 +11,13 @@ import math
 import numpy as np
 import pytest
 
-from hippo.brain import Perception
+from hippo.brain import Perception, Tick
 from hippo.perception.states import StateEvent
 from hippo.timing.chain import TimingStep
 from hippo.timing.spectral import BatteryState
 from hippo.timing.transitions import TransitionReadout
 
-RECORDS = [TransitionReadout, StateEvent, BatteryState, TimingStep, Perception]
+RECORDS = [TransitionReadout, StateEvent, BatteryState, TimingStep, Perception, Tick]
 
 
 def _distinct(cls: type) -> list[object]:
@@ -39,6 +39,7 @@ def test_each_field_is_its_own_argument(cls: type):
 
 
 def test_defaults_and_equality_are_the_dataclass_ones():
+    assert Tick(1.0, 2, False, None, None, None, 0.0, 0.0, None, False, ()).novel is False
     b = BatteryState(3, 0.4, np.zeros(2), False)
     assert b.previous is None and math.isnan(b.previous_tau) and b.previous_activity is None
     assert "previous_activity" not in repr(b)  # repr=False kept
