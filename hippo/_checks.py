@@ -30,8 +30,11 @@ def check_finite(name: str, value: Any, *, keep_float32: bool = False) -> np.nda
     With ``keep_float32`` a float32 array is returned as is (no float64 copy of a large
     recording); anything else becomes float64.
     """
-    arr = as_array(name, value)
-    if not (keep_float32 and arr.dtype == np.float32):
+    if type(value) is np.ndarray and value.dtype == np.float64:
+        arr = value  # already what the conversions below would return (the per-tick case)
+    else:
+        arr = as_array(name, value)
+    if arr.dtype != np.float64 and not (keep_float32 and arr.dtype == np.float32):
         try:
             arr = np.asarray(arr, dtype=float)
         except (TypeError, ValueError) as exc:  # the same type (scikit-learn's convention)

@@ -67,3 +67,24 @@ def test_flags_must_be_bools():
             check_observation(_obs(ir, sound=bad), 8, 0.0)
         with pytest.raises(ValueError, match=r"obs\.moving must be True or False"):
             check_observation(_obs(ir, moving=bad), 8, 0.0)
+
+
+def test_check_finite_takes_a_float64_array_as_it_is_and_converts_the_rest():
+    """The per-tick case (a native float64 ndarray) is returned as is, other inputs as before:
+    float32 made float64 unless kept, big-endian made native, lists and ints converted; NaN or
+    inf refused with their count either way."""
+    from hippo._checks import check_finite
+    a = np.linspace(0.0, 1.0, 5)
+    assert check_finite("x", a) is a
+    f32 = a.astype(np.float32)
+    assert check_finite("x", f32).dtype == np.float64
+    assert check_finite("x", f32, keep_float32=True) is f32
+    be = a.astype(">f8")
+    got = check_finite("x", be)
+    assert got.dtype == np.float64 and got.dtype.isnative and np.array_equal(got, a)
+    assert check_finite("x", [1, 2]).dtype == np.float64
+    assert check_finite("x", np.arange(3)).dtype == np.float64
+    for bad in (a.copy(), be.copy(), [0.0, 1.0, 2.0, 3.0, 4.0]):
+        bad[1], bad[3] = math.nan, math.inf
+        with pytest.raises(ValueError, match="x contains 2 non-finite"):
+            check_finite("x", bad)
