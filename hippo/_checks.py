@@ -30,8 +30,11 @@ def check_finite(name: str, value: Any, *, keep_float32: bool = False) -> np.nda
     With ``keep_float32`` a float32 array is returned as is (no float64 copy of a large
     recording); anything else becomes float64.
     """
-    arr = as_array(name, value)
-    if not (keep_float32 and arr.dtype == np.float32):
+    if type(value) is np.ndarray and value.dtype == np.float64:
+        arr = value  # already what the conversions below would return (the per-tick case)
+    else:
+        arr = as_array(name, value)
+    if arr.dtype != np.float64 and not (keep_float32 and arr.dtype == np.float32):
         try:
             arr = np.asarray(arr, dtype=float)
         except (TypeError, ValueError) as exc:  # the same type (scikit-learn's convention)
@@ -260,8 +263,10 @@ def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarr
         raise ValueError(f"obs.ir must be {n_sensors} sensor readings, got {ir!r:.80}") from None
     if ir.shape != (n_sensors,):
         raise ValueError(f"obs.ir must have shape ({n_sensors},), got {ir.shape} ({ir!r:.80})")
-    # a handful of numbers: plain float comparisons (NaN fails them) beat array reductions
-    if not all(0.0 <= v <= 1.0 for v in ir.tolist()):
+    # a handful of numbers: plain float min, max and sum beat array reductions (a NaN, which
+    # min and max may pass over, makes the sum NaN)
+    vals = ir.tolist()
+    if vals and not (min(vals) >= 0.0 and max(vals) <= 1.0 and sum(vals) == sum(vals)):
         raise ValueError(f"obs.ir readings must be finite and in [0, 1], got {ir}")
     real = type(t) is float or (isinstance(t, numbers.Real) and not isinstance(t, bool))
     if not real or not math.isfinite(t):
@@ -273,12 +278,12 @@ def check_observation(obs: Any, n_sensors: int, last_t: float) -> tuple[np.ndarr
         odo = np.asarray(odo, dtype=float)
     except (TypeError, ValueError):
         raise ValueError(f"obs.odometry must be (dx, dy, dtheta), got {odo!r:.80}") from None
-    if odo.shape != (3,) or not all(math.isfinite(v) for v in odo.tolist()):
+    if odo.shape != (3,) or not all(map(math.isfinite, odo.tolist())):
         raise ValueError(f"obs.odometry must be 3 finite numbers (dx, dy, dtheta), got {odo!r:.80}")
     if (type(floor) is not int and (isinstance(floor, bool | np.bool_)
                                     or not isinstance(floor, numbers.Integral))) or floor < 0:
         raise ValueError(f"obs.floor must be an integer colour id >= 0, got {floor!r}")
     for name, v in (("sound", sound), ("moving", moving)):
-        if not isinstance(v, bool | np.bool_):
+        if v is not True and v is not False and not isinstance(v, np.bool_):
             raise ValueError(f"obs.{name} must be True or False, got {v!r}")
     return ir, float(t)

@@ -51,15 +51,19 @@ from hippo.types import GroundTruth, Mode, Observation, StateKind, Transition, w
 __all__ = ["Brain", "BrainParams", "Perception", "Tick"]
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class Perception:
     """The neural chain's part of a tick: the state layer's event and the timing chain's step."""
 
     event: StateEvent
     timing: TimingStep
 
+    def __init__(self, event: StateEvent, timing: TimingStep) -> None:
+        # one a tick: the fields written straight into the instance's dict
+        self.__dict__["event"], self.__dict__["timing"] = event, timing
 
-@dataclass(frozen=True, slots=True)
+
+@dataclass(frozen=True, init=False)
 class Tick:
     """What the brain did in one tick (what the motor layer acts on and a log records).
 
@@ -88,6 +92,18 @@ class Tick:
     settling: bool
     omitted: tuple[Transition, ...]
     novel: bool = False
+
+    def __init__(self, t: float, winner: int | None, event: bool, mode: Mode,
+                 transition: Transition | None, target_heading: float | None, heading: float,
+                 move_since: float, move_limit: float | None, settling: bool,
+                 omitted: tuple[Transition, ...], novel: bool = False) -> None:
+        # one a tick: the fields written straight into the instance's dict (a frozen
+        # dataclass's own __init__ calls object.__setattr__ once per field)
+        d = self.__dict__
+        d["t"], d["winner"], d["event"], d["mode"] = t, winner, event, mode
+        d["transition"], d["target_heading"], d["heading"] = transition, target_heading, heading
+        d["move_since"], d["move_limit"], d["settling"] = move_since, move_limit, settling
+        d["omitted"], d["novel"] = omitted, novel
 
 
 class Brain:

@@ -102,7 +102,7 @@ class StateLayerParams:
         check_positive("context_time", self.context_time, allow_zero=True)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class StateEvent:
     """Outcome of one tick of the state layer.
 
@@ -119,10 +119,18 @@ class StateEvent:
     since: float
     novel: bool
 
+    def __init__(self, t: float, winner: int, changed: bool, previous: int | None, since: float,
+                 novel: bool) -> None:
+        # one a tick: the fields written straight into the instance's dict (a frozen
+        # dataclass's own __init__ calls object.__setattr__ once per field)
+        d = self.__dict__
+        d["t"], d["winner"], d["changed"] = t, winner, changed
+        d["previous"], d["since"], d["novel"] = previous, since, novel
+
 
 def _flag(name: str, value: object) -> bool | None:
-    if value is None:
-        return None
+    if value is None or value is True or value is False:  # the usual case (every tick)
+        return value  # type: ignore[return-value]
     if isinstance(value, (bool, np.bool_)):
         return bool(value)
     v = float(check_finite(name, value))

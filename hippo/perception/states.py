@@ -97,6 +97,23 @@ class StateLayer:
         self._n_place0 = int(n_place)
         self.reset()
 
+    @property
+    def activity(self) -> dict[int, float]:
+        """State id -> activity at the last step: every place state's, and the winner's (an
+        event state's level, or a context state's: the most active of its units)."""
+        got = self._activity
+        if got is None:
+            ids, pa, winner, own = self._activity_of
+            got = dict(zip(ids.tolist(), pa.tolist()))
+            if own is not None:
+                got[winner] = own
+            self._activity = got
+        return got
+
+    @activity.setter
+    def activity(self, value: dict[int, float]) -> None:
+        self._activity = value
+
     # ---------------------------------------------------------------- registry
     def reset(self, *, keep_states: bool = False) -> None:
         """Restart the competition (and, unless ``keep_states``, forget every state id)."""
@@ -129,7 +146,7 @@ class StateLayer:
         self._onset_t: dict[int, float] = {}
         self._pool = (0.0, 1.0)
         self.place_activity = np.zeros(self._place_ids.size)
-        self.activity: dict[int, float] = {}
+        self.activity = {}
 
     def recruit(self, kind: str, index: int | None = None, context: int | None = None) -> int:
         """Id of the state ``(kind, index, context)``, registering it if new."""
@@ -252,8 +269,12 @@ class StateLayer:
 
     # ---------------------------------------------------------------- competition
     def _places(self, place: object, dt: float) -> np.ndarray:
+        p = self.params
         if place is None:
             a = np.zeros(0)
+        elif (p.normalize == "pooled" and type(place) is np.ndarray and place.ndim == 1
+              and place.dtype == np.float64 and 0 < place.size == self._place_ids.size):
+            a = place  # checked by the pooled mean's sum below: a NaN or inf makes it so
         else:
             a = check_finite("place activities", place)
             if a.ndim != 1:
@@ -263,7 +284,6 @@ class StateLayer:
                              f"{a.size} units; place states are never removed")
         if a.size > self._place_ids.size:
             self._add_places(a.size - self._place_ids.size)
-        p = self.params
         rate = min(dt / p.norm_tau, 1.0)
         if p.normalize == "unit":
             z = (a - self._mean) / np.sqrt(self._var)
@@ -273,9 +293,12 @@ class StateLayer:
         elif p.normalize == "pooled" and a.size:
             mean, var = self._pool
             d = a - mean
+            total = float(np.add.reduce(d))
+            if not math.isfinite(total):  # names a NaN or inf (finite values that overflow pass)
+                check_finite("place activities", a)
             z = d / math.sqrt(var)
             # the means as np.mean takes them (sum / count), without its wrapper
-            m = mean + rate * (float(np.add.reduce(d)) / d.size)
+            m = mean + rate * (total / d.size)
             v = max((1.0 - rate) * (var + rate * (float(np.add.reduce(d * d)) / d.size)), 1e-12)
             self._pool = (m, v)
         else:
@@ -315,7 +338,7 @@ class StateLayer:
         since the previous tick (> 0).
         """
         dt = check_positive("dt", dt)
-        snd = bool(_flag("sound", sound))
+        snd = sound if sound is True or sound is False else bool(_flag("sound", sound))
         mov = _flag("moving", moving)
         col = _colour(colour)
         pa = self._places(place, dt)
@@ -376,8 +399,8 @@ class StateLayer:
         if new is None and self.winner is not None and pa.size:
             wk = self._keys[self.winner]
             units = self._units(self.winner)
-            w_act = (max(pa.item(u) for u in units) if wk.kind == "place"
-                     else self._event_level(self.winner, snd, col, mov))
+            w_act = ((pa.item(units[0]) if len(units) == 1 else max(pa.item(u) for u in units))
+                     if wk.kind == "place" else self._event_level(self.winner, snd, col, mov))
             beating = pa > w_act + p.margin
             for u in units:  # (empty unless the winner is a place)
                 beating[u] = False
@@ -404,10 +427,14 @@ class StateLayer:
                 self._candidate = new   # becomes the context once it has held the win
             else:
                 self._candidate = None  # an event state took over: the candidate never held
-        self.activity = dict(zip(self._place_ids.tolist(), pa.tolist()))
+        # the activities by state id, built when :attr:`activity` is read (most ticks nobody
+        # does): the place units' and, when it is not a plain place, the winner's level
         if self._keys[self.winner].kind != "place":
-            self.activity[self.winner] = self._event_level(self.winner, snd, col, mov)
+            own = self._event_level(self.winner, snd, col, mov)
         elif self.winner in self._clone_of:
-            self.activity[self.winner] = max(pa.item(u) for u in self._units(self.winner))
+            own = max(pa.item(u) for u in self._units(self.winner))
+        else:
+            own = None
+        self._activity, self._activity_of = None, (self._place_ids, pa, self.winner, own)
         novel = not (pa.size and float(np.maximum.reduce(pa)) >= p.recruit_threshold)
         return StateEvent(self.t, int(self.winner), bool(changed), previous, self.since, novel)

@@ -26,7 +26,7 @@ from hippo.timing.transitions import TransitionCells, TransitionParams, Transiti
 __all__ = ["TimingChain", "TimingStep"]
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class TimingStep:
     """One tick of the chain: the active battery, the readouts of the transitions out of the
     winner (``{(a, b): TransitionReadout}``) and the keys whose non-occurrence neuron fired."""
@@ -34,6 +34,12 @@ class TimingStep:
     battery: BatteryState
     readouts: dict[tuple[int, int], TransitionReadout]
     omitted: list[Hashable]
+
+    def __init__(self, battery: BatteryState, readouts: dict[tuple[int, int], TransitionReadout],
+                 omitted: list[Hashable]) -> None:
+        # one a tick: the fields written straight into the instance's dict
+        d = self.__dict__
+        d["battery"], d["readouts"], d["omitted"] = battery, readouts, omitted
 
 
 class TimingChain:

@@ -68,9 +68,11 @@ def sliding_mean(m_prev: np.ndarray, us: np.ndarray, gamma: float) -> np.ndarray
     return gamma * m_prev + (1.0 - gamma) * us
 
 
-def learning_modulation(us: np.ndarray, m_us: np.ndarray, sigma2: float) -> np.ndarray:
-    """HIREL eq. 2: ``eta = |X^US - m^US| + sigma2`` (``m^US`` already updated with ``X^US(t)``)."""
-    return np.abs(us - m_us) + sigma2
+def learning_modulation(us: np.ndarray | float, m_us: np.ndarray | float,
+                        sigma2: float) -> np.ndarray | float:
+    """HIREL eq. 2: ``eta = |X^US - m^US| + sigma2`` (``m^US`` already updated with ``X^US(t)``);
+    on arrays or on plain floats."""
+    return abs(us - m_us) + sigma2
 
 
 def nlms_update(w: np.ndarray, cs: np.ndarray, us: np.ndarray, eta: np.ndarray,
@@ -82,12 +84,16 @@ def nlms_update(w: np.ndarray, cs: np.ndarray, us: np.ndarray, eta: np.ndarray,
               \qquad X_i = \sum_j W_{ij} X^{CS}_j
 
     ``w`` is ``(n_out, n_in)``, ``cs`` ``(n_in,)``, ``us`` and ``eta`` ``(n_out,)``. ``X`` is the
-    prediction computed with the weights before the step.
+    prediction computed with the weights before the step. Without a US on any row (the
+    transition cells between events) the leak term is 0 and is not computed: the same numbers
+    (subtracting a zero changes no weight).
     """
     x = w @ cs
     norm = float(cs @ cs) + params.sigma1
-    dw = params.alpha * eta[:, None] * ((us - x)[:, None] * cs / norm  # the outer product
-                                        - params.leak * us[:, None] * w)
+    err = (us - x)[:, None] * cs / norm  # the outer product
+    if np.count_nonzero(us):  # (any US; ndarray.any costs ~5 x as much on a few rows)
+        err = err - params.leak * us[:, None] * w
+    dw = params.alpha * eta[:, None] * err
     return w + dt * dw, x
 
 

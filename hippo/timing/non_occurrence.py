@@ -111,16 +111,20 @@ class NonOccurrence:
             raise ValueError(f"predictions must be a mapping key -> prediction, got "
                              f"{type(predictions).__name__}")
         p = self.params
-        for gone in [k for k in self.peak if k not in predictions]:
-            del self.peak[gone]
-            self._active.discard(gone)
+        if not self.peak.keys() <= predictions.keys():  # (most ticks: no trace ended)
+            for gone in [k for k in self.peak if k not in predictions]:
+                del self.peak[gone]
+                self._active.discard(gone)
         fired = []
+        peaks, active = self.peak, self._active
         for key, value in predictions.items():
             timed = hasattr(value, "elapsed_fraction")
-            x = _finite(key, value.prediction if timed else value)  # type: ignore[union-attr]
-            peak = max(self.peak.get(key, -math.inf), x)
-            self.peak[key] = peak
-            if key in self._active:
+            x = value.prediction if timed else value  # type: ignore[union-attr]
+            if type(x) is not float or not math.isfinite(x):  # (a float: checked in place)
+                x = _finite(key, x)
+            peak = max(peaks.get(key, -math.inf), x)
+            peaks[key] = peak
+            if key in active:
                 continue
             if timed:
                 t_hat = float(value.learned_delay)  # type: ignore[union-attr]

@@ -68,7 +68,7 @@ class SpectralParams:
         check_range("readout_fraction", self.readout_fraction, 0.0, 1.0, closed="left")
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class BatteryState:
     """The battery after one tick.
 
@@ -86,6 +86,16 @@ class BatteryState:
     previous: int | None = None
     previous_tau: float = math.nan
     previous_activity: np.ndarray | None = field(default=None, repr=False)
+
+    def __init__(self, state: int, tau: float, activity: np.ndarray, changed: bool,
+                 previous: int | None = None, previous_tau: float = math.nan,
+                 previous_activity: np.ndarray | None = None) -> None:
+        # one a tick: the fields written straight into the instance's dict (a frozen
+        # dataclass's own __init__ calls object.__setattr__ once per field)
+        d = self.__dict__
+        d["state"], d["tau"], d["activity"], d["changed"] = state, tau, activity, changed
+        d["previous"], d["previous_tau"], d["previous_activity"] = (
+            previous, previous_tau, previous_activity)
 
 
 _CALIBRATIONS: dict[SpectralParams, tuple[np.ndarray, np.ndarray]] = {}
@@ -242,18 +252,21 @@ class SpectralTiming:
 
     def _code(self, v: np.ndarray) -> float:
         """:meth:`_codes` of one row ``v`` (n_cells,), the same number by fewer array
-        operations: the cells at or below threshold are listed once and the run around the
-        peak lies between the two of them that bracket it (the per-tick form: most ticks
-        re-read one transition)."""
+        operations: the run around the peak is found by walking out from it (the per-tick
+        form: most ticks re-read one transition)."""
         peak = int(v.argmax())
-        vmax = float(v[peak])
+        vmax = v.item(peak)
         if not vmax > 0.0:
             return math.nan
         th = self.params.readout_fraction * vmax
-        below = (v <= th).nonzero()[0]
-        i = int(below.searchsorted(peak))
-        lo = int(below[i - 1]) + 1 if i > 0 else 0
-        hi = int(below[i]) if i < below.size else v.size
+        # the run around the peak: walk out from it to the first cell at or below threshold on
+        # each side (plain float comparisons; the run is a few cells wide)
+        at, n = v.item, v.size
+        lo, hi = peak, peak + 1
+        while lo > 0 and not at(lo - 1) <= th:
+            lo -= 1
+        while hi < n and not at(hi) <= th:
+            hi += 1
         w = np.zeros(v.size)
         np.subtract(v[lo:hi], th, out=w[lo:hi])
         # the sums of _codes, over the whole row (its zeros too) and in its shapes

@@ -95,7 +95,7 @@ class TransitionParams:
         check_positive("latency", self.latency, allow_zero=True)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class TransitionReadout:
     """One transition at one tick (only transitions out of the current winner are read out).
 
@@ -112,6 +112,15 @@ class TransitionReadout:
     learned_delay: float
     elapsed_fraction: float
     delay_over: bool
+
+    def __init__(self, key: Key, prediction: float, strength: float, learned_delay: float,
+                 elapsed_fraction: float, delay_over: bool) -> None:
+        # several are built every tick: the fields written straight into the instance's dict
+        # (a frozen dataclass's own __init__ calls object.__setattr__ once per field)
+        d = self.__dict__
+        d["key"], d["prediction"], d["strength"] = key, prediction, strength
+        d["learned_delay"], d["elapsed_fraction"], d["delay_over"] = (
+            learned_delay, elapsed_fraction, delay_over)
 
 
 class TransitionCells:
@@ -143,6 +152,10 @@ class TransitionCells:
     #: NLMS step was checked stable (class defaults: a snapshot saved without them loads)
     _settled_at = -1
     _checked: tuple = (None, None)
+    #: row -> (T, X(T)), the battery at a row's learned delay kept while T is the same
+    _at_delay: dict | None = None
+    #: (rows, W[rows]) just learned this tick: the readout that follows reads the same block
+    _learned: tuple | None = None
 
     def __init__(self, timing: SpectralTiming, params: TransitionParams | None = None) -> None:
         if not isinstance(timing, SpectralTiming):
@@ -197,7 +210,7 @@ class TransitionCells:
         self._out[key[0]] = np.append(self._out.get(key[0], np.zeros(0, dtype=np.intp)), row)
         return row
 
-    def _refresh(self, rows: np.ndarray) -> None:
+    def _refresh(self, rows: np.ndarray | list[int]) -> None:
         r"""Re-read the learned delay and strength of ``rows`` after their weights changed.
 
         :math:`T_r = \mathrm{readout}(W_r)` (the population readout of the delay stored in the
@@ -205,15 +218,21 @@ class TransitionCells:
         for a row whose weights are silent), for all rows at once (one row, the usual case
         between events, by the one-row readout: the same numbers).
         """
-        if rows.size == 1:
+        if len(rows) == 1:
             r = int(rows[0])
             w = self._w[r]
             d = self.timing._readout(w)
             self._delay[r] = d
-            self._strength[r] = 0.0 if math.isnan(d) else float(
-                np.einsum("rj,rj->r", w[None], self.timing._tuning(d)[None])[0])
+            if math.isnan(d):  # silent weights
+                self._strength[r] = 0.0
+                return
+            memo = self._at_delay = self._at_delay if self._at_delay is not None else {}
+            kept = memo.get(r)
+            if kept is None or kept[0] != d:
+                kept = memo[r] = (d, self.timing._tuning(d))
+            self._strength[r] = float(np.einsum("rj,rj->r", w[None], kept[1][None])[0])
             return
-        w = self._w[rows]
+        w = self._w.take(rows, axis=0)  # (W[rows]: a row gather by take is ~3 x faster)
         d = self.timing._readouts(w)
         ok = ~np.isnan(d)
         if ok.all():  # the usual case: no row to mask out
@@ -231,16 +250,23 @@ class TransitionCells:
 
         :math:`X^{US}_b = [b = \text{winner}]`, :math:`\eta_b = |X^{US}_b - m^{US}_b| + \sigma_2`
         (``m^US`` already updated this tick), then one Euler step of eq. 1 on those rows. Rows
-        with :math:`\eta_b = 0` do not change, so only the others are re-read.
+        with :math:`\eta_b = 0` do not change: only the others are written back and re-read.
         """
         p = self.params.nlms
-        us = (self._target[rows] == winner).astype(float)
-        eta = learning_modulation(us, self._m[self._target_slot[rows]], p.sigma2)
-        learning = eta > 0.0
-        if not np.count_nonzero(learning):
+        m, target, slot = self._m, self._target, self._target_slot
+        # X^US and eq. 2 row by row on plain floats (a handful of rows: the same IEEE
+        # operations as on arrays, without an array's overhead)
+        rl = rows.tolist()
+        us = [1.0 if target.item(r) == winner else 0.0 for r in rl]
+        eta = [learning_modulation(u, m.item(slot.item(r)), p.sigma2) for u, r in zip(us, rl)]
+        learning = [(i, r) for i, (r, e) in enumerate(zip(rl, eta)) if e > 0.0]
+        if not learning:
             return
-        self._w[rows], _ = nlms_update(self._w[rows], cs, us, eta, p, dt)
-        self._refresh(rows[learning])
+        w = nlms_update(self._w.take(rows, axis=0), cs, np.array(us), np.array(eta), p, dt)[0]
+        for i, r in learning:  # (a row with eta = 0 is unchanged: w + dt * 0)
+            self._w[r] = w[i]
+        self._learned = (rows, w)
+        self._refresh([r for _, r in learning])
 
     def step(self, battery: BatteryState, dt: float, *, learn_event: bool = True
              ) -> dict[Key, TransitionReadout]:
@@ -259,7 +285,7 @@ class TransitionCells:
             dt = self._check_dt(dt)
         p = self.params.nlms
         winner = check_state_id("battery.state", battery.state)
-        if battery.activity.shape != (self.timing.n_cells,):
+        if battery.activity.shape != self.timing.mu.shape:  # (n_cells,)
             raise ValueError(f"battery.activity must have shape ({self.timing.n_cells},), "
                              f"got {battery.activity.shape}")
         # eq. 3 for every known state: X^US_b(t) = 1 for the winner, 0 otherwise. Between
@@ -295,8 +321,7 @@ class TransitionCells:
             # between events X^US = 0 on every row out of the winner, so eta = m^US + sigma2:
             # with sigma2 = 0 no row learns unless the target of one was active lately
             rows = self._out.get(winner)
-            if rows is not None and not settled and (
-                    p.sigma2 != 0.0 or np.count_nonzero(self._m[self._target_slot[rows]])):
+            if rows is not None and not settled:
                 self._learn(rows, battery.activity, winner, dt)
         self.state = winner
         self.readouts = self._read(winner, battery.activity)
@@ -322,9 +347,10 @@ class TransitionCells:
         ``delay_over = [s_ab >= min_strength] and [tau_hat / T_ab >= 1 - lead / T_ab]``,
         ``tau_hat`` the population readout of the battery (inf when it is silent). Those are a
         few scalars per row, taken as plain floats (the same IEEE operations as array ones,
-        without an array's overhead on a handful of rows).
+        without an array's overhead on a handful of rows). Rows that learned this tick are read
+        from the block the learning step made (the numbers a gather of them gives).
         """
-        rows = self._out.get(a)
+        rows, (kept, self._learned) = self._out.get(a), (self._learned, None)
         if rows is None:
             self.elapsed = math.nan
             return {}
@@ -335,12 +361,13 @@ class TransitionCells:
         if math.isnan(elapsed):  # a silent battery: longer than any cell can time
             elapsed = math.inf
         self.elapsed = elapsed
-        preds = (self._w[rows] @ activity).tolist()
+        preds = ((kept[1] if kept is not None and kept[0] is rows else self._w.take(rows, axis=0))
+                 @ activity).tolist()
         lead = self.params.anticipation + self.params.latency
         strong = self.params.min_strength
-        keys, out = self._keys, {}
-        for r, x, d, s in zip(rows.tolist(), preds, self._delay[rows].tolist(),
-                              self._strength[rows].tolist()):
+        keys, delay, strength, out = self._keys, self._delay, self._strength, {}
+        for r, x in zip(rows.tolist(), preds):
+            d, s = delay.item(r), strength.item(r)
             frac = elapsed / d  # a row whose weights are silent has T = nan: never over
             out[keys[r]] = TransitionReadout(keys[r], x, s, d, frac,
                                              s >= strong and frac >= 1.0 - lead / d)

@@ -375,3 +375,53 @@ def test_context_params_reach_the_context_states():
 
     cp = ContextParams(min_count=9, max_depth=2)
     assert StateLayer(StateLayerParams(contexts=cp)).contexts.params == cp
+
+
+def test_activity_is_each_ticks_levels_however_late_it_is_read():
+    """``activity`` (built only when read) is the dict of that tick: the place states'
+    levels and the winner's own; read after a later step it is the later tick's, never a
+    stale one, and a dict written in (a restored snapshot) is what is read."""
+    layer = StateLayer()
+    rng = np.random.default_rng(1)
+    for t in range(60):
+        acts = rng.random(4)
+        ev = layer.step(acts, colour=2 if 20 <= t < 30 else 0, dt=DT)
+        if t % 3:
+            continue  # not read on every tick: the next read must still be this tick's
+        want = dict(zip(layer._place_ids.tolist(), layer.place_activity.tolist()))
+        if layer.key(ev.winner).kind == "colour":
+            want[ev.winner] = 1.0
+        assert layer.activity == want
+        assert layer.activity is layer.activity  # built once per tick
+    layer.activity = {7: 0.5}
+    assert layer.activity == {7: 0.5}
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+def test_non_finite_place_activities_are_refused_wherever_they_sit(bad: float):
+    """With pooled normalisation a float64 vector of the known size is checked by the pooled
+    mean's own sum: a NaN or inf at any position is refused with the checker's message and
+    leaves the layer as it was (the next good tick gives what it gives without the bad one)."""
+    rng = np.random.default_rng(3)
+    good = [rng.random(5) for _ in range(6)]
+    for pos in range(5):
+        layer, clean = StateLayer(), StateLayer()
+        for a in good[:3]:
+            layer.step(a, dt=DT)
+            clean.step(a, dt=DT)
+        a = good[3].copy()
+        a[pos] = bad
+        with pytest.raises(ValueError, match="place activities contains 1 non-finite"):
+            layer.step(a, dt=DT)
+        assert layer._pool == clean._pool
+        for a in good[4:]:
+            assert layer.step(a, dt=DT) == clean.step(a, dt=DT)
+            np.testing.assert_array_equal(layer.place_activity, clean.place_activity)
+        grown = np.append(good[3], bad)  # a vector that grows is checked before it grows
+        with pytest.raises(ValueError, match="non-finite"):
+            layer.step(grown, dt=DT)
+        assert layer._place_ids.size == 5
+    big = StateLayer()
+    big.step(np.full(3, 0.5), dt=DT)
+    with np.errstate(all="ignore"):
+        big.step(np.full(3, 1e308), dt=DT)  # finite values whose sum overflows are no error

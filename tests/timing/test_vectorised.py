@@ -223,3 +223,116 @@ def test_readout_flags_are_the_array_form_bit_for_bit():
         assert [got[cells._keys[r]].prediction for r in rows] == want.tolist()
         over += int(flag.sum())
     assert over > 10
+
+
+def _nlms_with_leak_always(w, cs, us, eta, params, dt):
+    """nlms_update as written before the no-US shortcut: the leak term always computed."""
+    x = w @ cs
+    norm = float(cs @ cs) + params.sigma1
+    dw = params.alpha * eta[:, None] * ((us - x)[:, None] * cs / norm
+                                        - params.leak * us[:, None] * w)
+    return w + dt * dw, x
+
+
+def test_nlms_without_us_skips_a_leak_that_changes_no_weight():
+    """Between events (X^US = 0 on every row) the leak term is not computed: the weights are
+    those of the full formula bit for bit, negative weights and underflowed CS cells included
+    (where the skipped term is a negative zero)."""
+    from hippo.timing.nlms import NLMSParams
+    rng = np.random.default_rng(8)
+    timing = SpectralTiming()
+    for leak in (0.25, 0.0):
+        p = NLMSParams(leak=leak)
+        for k in range(1, 7):
+            w = rng.standard_normal((k, timing.n_cells)) * 0.3
+            w[:, ::7] = 0.0
+            cs = timing.tuning(float(rng.uniform(0.0, 100.0)))  # far cells underflow to 0
+            assert (cs == 0.0).any() and (w < 0).any()
+            eta = rng.uniform(0.0, 0.5, k)
+            for us in (np.zeros(k), (np.arange(k) == 0).astype(float)):
+                got, x = nlms_update(w, cs, us, eta, p, 0.2)
+                want, xw = _nlms_with_leak_always(w, cs, us, eta, p, 0.2)
+                np.testing.assert_array_equal(got.view(np.int64), want.view(np.int64))
+                np.testing.assert_array_equal(x, xw)
+
+
+class ArrayLearnCells(TransitionCells):
+    """The transition cells with eq. 2 on arrays (the form before the per-row floats)."""
+
+    def _learn(self, rows: np.ndarray, cs: np.ndarray, winner: int, dt: float) -> None:
+        p = self.params.nlms
+        us = (self._target[rows] == winner).astype(float)
+        eta = learning_modulation(us, self._m[self._target_slot[rows]], p.sigma2)
+        learning = eta > 0.0
+        if not np.count_nonzero(learning):
+            return
+        self._w[rows], _ = _nlms_with_leak_always(self._w[rows], cs, us, eta, p, dt)
+        self._refresh(rows[learning])
+
+
+@pytest.mark.parametrize("sigma2", [0.0, 0.01])
+def test_learning_on_plain_floats_is_the_array_form_bit_for_bit(sigma2: float):
+    """Eq. 2 row by row on floats (and the no-US shortcut) gives the weights, delays and
+    strengths of the array form exactly, on every tick of a random run with shared successors
+    (rows that learn next to rows that do not)."""
+    from hippo.timing.nlms import NLMSParams
+    params = TransitionParams(nlms=NLMSParams(sigma2=sigma2))
+    ft, at = SpectralTiming(), SpectralTiming()
+    fast, ref = TransitionCells(ft, params), ArrayLearnCells(at, params)
+    rng = np.random.default_rng(9)
+    partial = 0
+    for winner in np.repeat(rng.integers(0, 6, 120), rng.integers(1, 40, 120)):
+        fast.step(ft.step(int(winner), 0.2), 0.2)
+        ref.step(at.step(int(winner), 0.2), 0.2)
+        n = len(fast.transitions)
+        rows = fast._out.get(int(winner), np.zeros(0, dtype=int))
+        eta = fast._m[fast._target_slot[rows]] + sigma2
+        partial += bool((eta > 0).any() and not (eta > 0).all())
+        np.testing.assert_array_equal(fast._w[:n].view(np.int64), ref._w[:n].view(np.int64))
+        np.testing.assert_array_equal(fast._delay[:n], ref._delay[:n])
+        np.testing.assert_array_equal(fast._strength[:n], ref._strength[:n])
+    assert len(fast.transitions) > 15
+    assert partial > 50 or sigma2 > 0  # rows learning next to rows that do not
+
+
+def test_refresh_keeps_the_battery_at_a_delay_only_while_the_delay_is_the_same():
+    """The one-row refresh keeps X(T) per row; a row whose delay moved is read at its new
+    delay (a kept X of the old delay would give another strength)."""
+    timing = SpectralTiming()
+    cells = TransitionCells(timing)
+    for winner in [0] * 20 + [1] * 30 + [0] * 20 + [1] * 3:
+        cells.step(timing.step(winner, 0.2), 0.2)
+    r = cells._index[(0, 1)]
+
+    def want(w: np.ndarray) -> tuple[float, float]:
+        d = timing._readouts(w[None])
+        return d[0], np.einsum("rj,rj->r", w[None], timing._tuning(d))[0]
+
+    for w in (timing.tuning(4.0) * 0.8, timing.tuning(4.0) * 0.4,   # same delay, kept X
+              timing.tuning(9.0) * 0.8, timing.tuning(4.0) * 0.8):  # delay moved (and back)
+        cells._w[r] = w
+        cells._refresh(np.array([r]))
+        d, s = want(w)
+        assert cells._delay[r] == d and cells._strength[r] == s
+        assert cells._at_delay[r][0] == d
+
+
+def test_the_block_just_learned_is_read_that_tick_and_never_after():
+    """The readout reads the rows learned this tick from the block the learning step made
+    (the same numbers as a fresh gather) and drops it: no block survives into a later tick."""
+    timing = SpectralTiming()
+    cells = TransitionCells(timing)
+    rng = np.random.default_rng(12)
+    used = 0
+    for winner in np.repeat(rng.integers(0, 5, 100), rng.integers(2, 30, 100)):
+        orig = cells._learned
+        assert orig is None
+        got = cells.step(timing.step(int(winner), 0.2), 0.2)
+        rows = cells._out.get(int(winner))
+        assert cells._learned is None
+        if rows is None:
+            continue
+        want = (cells._w[rows] @ timing.activity).tolist()
+        assert [got[cells._keys[r]].prediction for r in rows] == want
+        used += 1
+    assert used > 1000
