@@ -58,6 +58,11 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["run", "maze", "--threshold", "nan"], "--threshold"),
     (["run", "maze", "--leak", "1.5"], "--leak"),
     (["run", "maze", "--ticks", "100"], "--ticks"),
+    (["run", "maze", "--washout", "-1"], "--washout"),
+    (["run", "maze", "--spectral-radius", "1"], "--spectral-radius"),
+    (["run", "maze", "--washout", "soon"], "--washout"),
+    (["run", "maze", "--ticks", "6000", "--washout", "150"], "--washout"),
+    (["run", "maze", "--ticks", "6000"], "--washout"),
     # place preference
     (["run", "place-preference", "--units", "0"], "--units"),
     (["run", "place-preference", "--explore-min", "0"], "--explore-min"),
