@@ -50,6 +50,7 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["run", "two-rooms", "--leak", "0.1,x"], "--leak"),
     (["run", "two-rooms", "--ica-restarts", "0"], "--ica-restarts"),
     (["run", "two-rooms", "--ica-score", "bogus"], "--ica-score"),
+    (["run", "two-rooms", "--ica-algorithm", "parallel"], "--ica-algorithm"),
     (["run", "two-rooms", "--hold", "-1"], "--hold"),
     # maze
     (["run", "maze", "--units", "0"], "--units"),

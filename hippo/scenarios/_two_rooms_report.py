@@ -85,6 +85,7 @@ def _leak_sweep_one(args: argparse.Namespace, neurons: int, restarts: int, seed:
     t0 = time.perf_counter()
     base = RCSFAICA.smc09(n_reservoir=neurons, seed=seed, n_sfa=args.n_sfa,
                           n_ica=args.n_ica, ica_restarts=restarts, ica_score=args.ica_score,
+                          ica_algorithm=args.ica_algorithm,
                           sfa_cutoff=sfa_cutoff(args.sfa_cutoff)).params
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ICAConvergenceWarning)

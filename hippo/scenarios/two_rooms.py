@@ -114,6 +114,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="FastICA restarts, best kept by --ica-score (no labels)")
     parser.add_argument("--ica-score", default="kurtosis",
                         choices=["kurtosis", "sparseness", "slowness"])
+    parser.add_argument("--ica-algorithm", default="symmetric",
+                        choices=["symmetric", "deflation"],
+                        help="FastICA: all units at once, or one after another")
     parser.add_argument("--sfa-cutoff", type=cli_sfa_cutoff, default="1e-8",
                         help="relative whitening cutoff in (0, 1), or 'auto'")
     parser.add_argument("--leak", type=parse_leak, default=PAPER_LEAK,
@@ -270,6 +273,7 @@ def run(args: argparse.Namespace) -> dict:
                 base = RCSFAICA.smc09(n_reservoir=neurons, seed=seed, n_sfa=args.n_sfa,
                                       n_ica=args.n_ica, ica_restarts=restarts,
                                       ica_score=args.ica_score,
+                                      ica_algorithm=args.ica_algorithm,
                                       sfa_cutoff=sfa_cutoff(args.sfa_cutoff),
                                       slow_pool=args.slow_pool).params
                 sel_rows.append(select_setting(
@@ -280,6 +284,7 @@ def run(args: argparse.Namespace) -> dict:
                 model = RCSFAICA.smc09(n_reservoir=neurons, leak=leak, seed=seed,
                                        n_sfa=args.n_sfa, n_ica=args.n_ica,
                                        ica_restarts=restarts, ica_score=args.ica_score,
+                                       ica_algorithm=args.ica_algorithm,
                                        sfa_cutoff=sfa_cutoff(args.sfa_cutoff),
                                        slow_pool=args.slow_pool)
                 t1 = time.perf_counter()
@@ -330,7 +335,8 @@ def run(args: argparse.Namespace) -> dict:
         "reservoir_seeds": seeds,
         "neurons": neurons, "n_sfa": args.n_sfa, "n_ica": args.n_ica, "rho": args.rho,
         "slow_pool": args.slow_pool,
-        "ica_restarts": restarts, "ica_score": args.ica_score, "sfa_cutoff": args.sfa_cutoff,
+        "ica_restarts": restarts, "ica_score": args.ica_score,
+        "ica_algorithm": args.ica_algorithm, "sfa_cutoff": args.sfa_cutoff,
         "room_changes": int(np.sum(np.diff(rec.region.astype(int)) != 0)),
         "region_occupancy": {n: float(np.mean(rec.region == i))
                              for i, n in enumerate(rec.region_names)},

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from hippo.cli import run_scenario
+from hippo.perception import RCSFAICA
 
 
 def test_two_rooms_quick(tmp_path):
@@ -27,6 +28,17 @@ def test_two_rooms_quick(tmp_path):
     assert math.isfinite(m["kidnap_recovery_ticks"]) and 0 <= m["kidnap_recovery_ticks"] <= 60
     assert m["kidnap_unrecovered"] == 0 and m["seeds"] == [0]
     assert [e["tick"] for e in m["kidnap_events"]] == [150, 400, 640, 980]
+
+
+def test_two_rooms_ica_algorithm_option(tmp_path):
+    # the ICA variant reaches the fitted model (saved with it) and the metrics
+    m = run_scenario("two-rooms", ["--quick", "--out", str(tmp_path), "--no-figures",
+                                   "--no-ceiling", "--ica-algorithm", "deflation",
+                                   "--ica-score", "slowness", "--ica-restarts", "2"])
+    assert m["ica_algorithm"] == "deflation" and m["ica_score"] == "slowness"
+    model = RCSFAICA.load(tmp_path / "place_cells.npz")
+    assert model.params.ica_algorithm == "deflation" and model.params.ica_score == "slowness"
+    assert 0.5 <= m["room_cell_test_balanced_accuracy"] <= 1.0
 
 
 def test_two_rooms_leak_option_and_sweep(tmp_path):
