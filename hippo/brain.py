@@ -301,6 +301,7 @@ class Brain:
             self.decide.choose()
         elif ev.changed:
             self._on_event(ev.winner)
+        self.decide.reanchor()
         self.decide.recognise_stop()
         self.decide.check_wait()
         self.drives.step(p.dt)

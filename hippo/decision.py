@@ -92,6 +92,8 @@ class Decider(SoftRecognition, RunupRules):
         self._inhibited.update(kept)
         for d in kept:
             self._inhibited_at[d] = (float(where[0]), float(where[1]))
+        if kept:
+            self.lifted_with_drives()
 
     def release_all(self) -> None:
         """Release every drive a finished wait inhibited."""
@@ -144,6 +146,8 @@ class Decider(SoftRecognition, RunupRules):
                 self.choose(b.layer.key(new).context, exclude_wait=True)
             return
         self._waiting_on = None
+        if kind == StateKind.PLACE:
+            self.passed_held_stop(new)
         came_from = b.kind(prev) if prev is not None else None
         if (kind == StateKind.PLACE and came_from is not None and came_from.is_context
                 and self._cycling(new)):

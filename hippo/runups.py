@@ -9,7 +9,10 @@ here use it (parameters in :class:`~hippo.brain_params.BrainParams`):
 - the odometric stop (``runup_stop``, ``runup_hops``; off by default): a taught stop is made
   by its run-up where its place neither wins nor is recognised softly;
 - anchoring: only a wait where the anchor said moves it, and a run-up that two stops by place
-  in a row show to be too long (a detour in the lesson) is replaced.
+  in a row show to be too long (a detour in the lesson) is replaced;
+- re-anchoring after a lift: a robot carried in the middle of a task (a kidnap, a rescue) has
+  no anchor; the first stop it passes without making it, because its drive is held, anchors
+  the next run-up where that stop was due (entering its place plus the map's delay of the stop).
 """
 
 from __future__ import annotations
@@ -34,6 +37,9 @@ class RunupRules:
     _stop_by_runup: bool
     _runup_fired: bool
     _entry_timed: bool
+    # class defaults: a decider restored from a snapshot saved before these existed
+    _reanchor: bool = False                     # carried, drives kept: no anchor yet
+    _due_anchor: tuple[str, float] | None = None  # (drive, time) a passed stop was due
 
     def wait_drive(self) -> int:  # provided by the Decider
         raise NotImplementedError
@@ -43,6 +49,38 @@ class RunupRules:
 
     def _taught_stops(self, name: str) -> Any:  # provided by the Decider
         raise NotImplementedError
+
+    def lifted_with_drives(self) -> None:
+        """The robot was carried in the middle of a task with its held drives kept: the next
+        held stop it passes re-anchors the run-ups (see the module docstring)."""
+        self._reanchor, self._due_anchor = True, None
+
+    def passed_held_stop(self, place: int) -> None:
+        """``place`` was just entered: if no anchor holds since a lift and a held drive's taught
+        stop is bound to it, that stop is due after the map's delay of ``place -> still``."""
+        b = self.b
+        if not self._reanchor or b.wait_ended_at is not None:
+            return
+        for name in b.drives.names:
+            if not b.drives.is_inhibited(name):
+                continue
+            for c, a in self._taught_stops(name):
+                delay = b.graph.delay((c, a))
+                if c == place and delay is not None:
+                    self._due_anchor = (name, b.t + float(delay))
+                    return
+
+    def reanchor(self) -> None:
+        """Every tick: a passed held stop that is now due anchors the run-ups, as if the robot
+        had made it and its wait had just ended (unless a wait anchored them meanwhile)."""
+        b = self.b
+        due = self._due_anchor
+        if due is None or b.t < due[1]:
+            return
+        self._due_anchor = None
+        if self._reanchor and b.wait_ended_at is None and self.mode != Mode.WAIT:
+            b.wait_ended_at, b.last_wait_drive = b.odometer, due[0]
+            self._reanchor = False
 
     def _in_order(self, name: str) -> tuple[float, float] | None:
         """``(run-up, ran)`` of drive ``name`` if its run-up is taught and counts from the

@@ -414,6 +414,39 @@ def test_a_stop_omitted_before_its_stillness_can_be_perceived_waits_for_it():
     assert wait_after(5.0, 2.0) == Mode.WAIT  # no omission: the wait goes on
 
 
+def test_after_a_kidnap_the_held_stop_it_passes_anchors_the_run_ups_where_it_was_due():
+    def carried(keep: bool) -> tuple[Brain, Run, list[float | None], float]:
+        brain, run = taught()
+        a = brain.layer.find("place", 0)
+        stop = (a, brain.layer.find("still", context=a))
+        delay = brain.graph.delay(stop)
+        # the robot has just waited at A for "sound": the drive is held by that wait
+        brain.drives.inhibit("sound")
+        brain.decide._inhibited["sound"] = a
+        brain.lifted(keep_drives=keep)
+        seen = [brain.wait_ended_at]
+        run.ticks(20, "B", moving=True)
+        run.ticks(10, "C", moving=True)
+        seen.append(brain.wait_ended_at)
+        for _ in range(20):                       # until A wins (1 cm a tick)
+            if brain.state == a:
+                break
+            run.step("A", moving=True)
+        assert brain.state == a
+        entered = brain.odometer
+        run.ticks(round(delay / DT) + 5, "A", moving=True)   # passes: the drive is held
+        seen.append(brain.wait_ended_at)
+        return brain, run, seen, entered + delay / DT
+
+    brain, _, seen, due = carried(keep=True)
+    assert brain.decide.mode != Mode.WAIT          # passed, not stopped
+    assert seen[0] is None and seen[1] is None     # no anchor after the lift, nor at B, C
+    assert seen[2] == pytest.approx(due, abs=1.5)  # anchored where A's stop was due
+    assert brain.last_wait_drive == "sound"
+    brain, _, seen, _ = carried(keep=False)        # a new trial: nothing held, no anchor
+    assert seen == [None, None, None]
+
+
 def test_only_a_wait_where_the_anchor_said_anchors_the_next_run_up():
     # two checkpoints a -> b -> a: b's run-up 50 cm after a's wait, a's 100 cm after b's
     brain = Brain(Stub(), drives={"a": DriveParams(), "b": DriveParams()},
