@@ -80,6 +80,8 @@ class Decider(SoftRecognition, RunupRules):
     def lifted(self) -> None:
         self._visits.clear()
         self._explore_until = -math.inf
+        # no re-anchoring is pending unless this lift keeps held drives (restore_inhibitions)
+        self._reanchor, self._due_anchor = False, None
 
     def inhibitions(self) -> dict[str, int]:
         """Drive -> the context state it was inhibited in, for the drives a finished wait

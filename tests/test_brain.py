@@ -445,6 +445,14 @@ def test_after_a_kidnap_the_held_stop_it_passes_anchors_the_run_ups_where_it_was
     assert brain.last_wait_drive == "sound"
     brain, _, seen, _ = carried(keep=False)        # a new trial: nothing held, no anchor
     assert seen == [None, None, None]
+    # a kidnap, then a new trial before any anchor: the kidnap's re-anchoring is dropped
+    brain, _ = taught()
+    brain.drives.inhibit("sound")
+    brain.decide._inhibited["sound"] = brain.layer.find("place", 0)
+    brain.lifted(keep_drives=True)
+    assert brain.decide._reanchor
+    brain.lifted()
+    assert not brain.decide._reanchor and brain.decide._due_anchor is None
 
 
 def test_only_a_wait_where_the_anchor_said_anchors_the_next_run_up():
