@@ -338,7 +338,7 @@ class StateLayer:
         since the previous tick (> 0).
         """
         dt = check_positive("dt", dt)
-        snd = sound if sound is True or sound is False else bool(_flag("sound", sound))
+        snd = bool(_flag("sound", sound))
         mov = _flag("moving", moving)
         col = _colour(colour)
         pa = self._places(place, dt)
