@@ -41,7 +41,9 @@ def _evaluate(model: RCSFAICA, U: np.ndarray, rooms: dict[str, np.ndarray], n_tr
                         rcond=None)[0]
     lin = M.fit_binary_cell((X @ w)[tr, None], in_b[tr], in_room[tr])
     sup = M.balanced_accuracy(lin.predict((X @ w)[te, None])[m], in_b[te][m])
-    out = {"room_cell_unit": cell.unit, "room_cell_train_balanced_accuracy":
+    out = {"room_cell_unit": cell.unit,
+           "room_cell_is_slowest": bool(cell.unit == int(np.argmin(_slowness(Y[tr])))),
+           "room_cell_train_balanced_accuracy":
            cell.train_balanced_accuracy, "room_cell_test_balanced_accuracy": room_bacc,
            "corridor_cell_unit": cor.unit, "corridor_cell_test_balanced_accuracy": cor_bacc,
            "sfa_supervised_readout_test_balanced_accuracy": sup,
@@ -61,6 +63,11 @@ def _evaluate(model: RCSFAICA, U: np.ndarray, rooms: dict[str, np.ndarray], n_tr
                    kidnap_recovery_ticks_max=float(fin.max()) if fin.size else float("nan"),
                    kidnap_unrecovered=int(np.isnan(real).sum()), Y_kid=Yk)
     return out
+
+
+def _slowness(Y: np.ndarray) -> np.ndarray:
+    """Δ of each column, ⟨ẏ²⟩ / var(y): smaller is slower (the choice of a unit without labels)."""
+    return np.mean(np.diff(Y, axis=0) ** 2, axis=0) / np.maximum(Y.var(axis=0), 1e-300)
 
 
 def _room_cell_accuracy(Y: np.ndarray, rooms: dict[str, np.ndarray], n_train: int) -> float:
