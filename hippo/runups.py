@@ -6,6 +6,7 @@ fields drift by some 30 cm from lap to lap; the run between two checkpoints does
 here use it (parameters in :class:`~hippo.brain_params.BrainParams`):
 
 - the gate (``runup_tolerance``, ``runup_window``): an approach does not end before the run-up;
+- soft recognition (coactive or aliased places) is not trusted clearly short of the run-up;
 - the odometric stop (``runup_stop``, ``runup_hops``; off by default): a taught stop is made
   by its run-up where its place neither wins nor is recognised softly;
 - anchoring: only a wait where the anchor said moves it, and a run-up that two stops by place
@@ -197,6 +198,29 @@ class RunupRules:
             return False
         runup, ran = anchored
         return runup + self.b.p.runup_stop <= ran < runup + self.b.p.runup_window
+
+    def _short_of(self, name: str) -> bool:
+        """Has the robot run clearly too little since its last wait to be at drive ``name``'s
+        stop? The stop is due the taught run-ups on from that wait: walking the taught order
+        back from ``name`` (each drive's run-up counts from the drive taught before it) to the
+        drive of the last wait, their sum (one run-up in order, two after a stop missed, a
+        lap right after a wait for ``name`` itself). "Clearly": by more than
+        ``runup_window``. No anchor, or the last wait's drive not in ``name``'s taught chain:
+        no bound. Soft recognition asks this: a learned place coactive or aliased 10-150 cm
+        after a wait stood in for a stop farther on (or for the same one again), 6 misplaced
+        stops in 6 h of deployment, tuning seed 1."""
+        b = self.b
+        if b.p.runup_window <= 0 or b.wait_ended_at is None or b.last_wait_drive is None:
+            return False
+        due, d = 0.0, name
+        for _ in range(len(b.runups)):
+            if d not in b.runups:
+                return False
+            due += b.runups[d]
+            d = b.runup_after.get(d)
+            if d == b.last_wait_drive:
+                return b.odometer - b.wait_ended_at < due - b.p.runup_window
+        return False
 
     def _before_runup(self) -> bool:
         """Has the robot, approaching a stop with a taught run-up, run clearly less than it

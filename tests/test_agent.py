@@ -244,6 +244,43 @@ def test_a_wanted_stop_is_recognised_from_a_coactive_place():
     assert agent.mode == Mode.MOVE
 
 
+def test_a_stop_is_not_recognised_softly_clearly_short_of_its_run_up():
+    """Soft recognition asks the run-up rules: the stop is due the taught run-ups on from the
+    last wait (back along the taught order: one run-up right after the drive taught before
+    the stop's, a lap right after a wait for its own drive). Clearly short of that (by more
+    than runup_window) it is not recognised softly; a drive outside the taught chain or no
+    anchor sets no bound."""
+    _arena, world = corridor_world()
+    agent = Agent(_Recorder(), drives={"cp": DriveParams(), "other": DriveParams()},
+                  sensors=world.sensors, robot=world.robot, seed=0,
+                  params=AgentParams(coactive=0.6, runup_window=30.0))
+    layer, graph, brain = agent.layer, agent.graph, agent.brain
+    q, c = layer.recruit("place", 0), layer.recruit("place", 1)
+    still, moving = layer.recruit("still", None, c), layer.recruit("moving", None, c)
+    graph.add_transition(q, c, Action.move(0.0, 20.0), 4.0)
+    graph.add_transition(c, still, Action.wait(), 3.0)
+    graph.add_transition(still, moving, Action.wait(), 10.0)
+    agent.drives.reward("cp", (still, moving))
+    agent.drives.set_level("cp", 1.0)
+    brain.runups = {"cp": 100.0, "other": 80.0}           # taught: other -> cp -> other
+    brain.runup_after = {"cp": "other", "other": "cp"}
+    layer.place_activity = np.array([0.9, 0.6])   # C coactive
+
+    def approaches(last: str | None, ran: float) -> bool:
+        brain.state, agent.decide.mode, agent.decide.current = q, Mode.MOVE, (q, c)
+        brain.last_wait_drive = last
+        brain.wait_ended_at = None if last is None else brain.odometer - ran
+        agent.decide.recognise_stop()
+        return agent.mode == Mode.APPROACH and agent.current == (c, still)
+
+    assert not approaches("other", 60.0)             # in order: 100 cm due, 60 run
+    assert approaches("other", 75.0)                 # within runup_window of it
+    assert not approaches("cp", 140.0)               # its own wait: a lap (180 cm) due
+    assert approaches("cp", 160.0)
+    assert approaches("elsewhere", 5.0)              # not in the taught chain: no bound
+    assert approaches(None, 0.0)                     # no anchor (after a lift): no bound
+
+
 class _StaleCells:
     """Ground-truth fields that, after a kidnap (a jump of the true position), keep reporting
     the old place for ``lag`` ticks, as a reservoir's fading memory does."""

@@ -414,6 +414,36 @@ def test_a_stop_omitted_before_its_stillness_can_be_perceived_waits_for_it():
     assert wait_after(5.0, 2.0) == Mode.WAIT  # no omission: the wait goes on
 
 
+def test_a_place_that_wins_while_the_robot_brakes_for_its_stop_does_not_call_it_off():
+    # the robot chose to stop at A; while it brakes (its stillness not yet perceived) the
+    # place code moves on to B. The stop stands: the robot stands still, and the stillness is
+    # A's stop. Before, B's event chose anew and the robot drove on through the checkpoint
+    def after_braking(place_during_braking: str) -> tuple[Mode, int | None, set[int]]:
+        brain, run = taught()
+        brain.drives.set_level("sound", 1.0)
+        run.ticks(30, "B", moving=True)
+        run.ticks(5, "C", moving=True)
+        for _ in range(80):
+            if run.step("A", moving=True).mode == Mode.WAIT:
+                break
+        assert brain.mode == Mode.WAIT
+        # the last centimetres of braking: the leaky place code lets B win on the 4th tick,
+        # within the stop's grace for its stillness to be perceived (0.8 s)
+        entered = set()
+        for _ in range(4):
+            run.step(place_during_braking, moving=True)
+            entered.add(brain.state)
+        modes = [run.step(place_during_braking, moving=False).mode for _ in range(10)]
+        assert all(m == Mode.WAIT for m in modes[:5])
+        return modes[-1], brain.layer.key(brain.state).context, entered
+
+    a_stop = after_braking("A")
+    b_stop = after_braking("B")
+    assert a_stop[0] == b_stop[0] == Mode.WAIT
+    assert b_stop[1] == a_stop[1]            # the stillness is A's stop, bound to A
+    assert len(b_stop[2]) == 2 and len(a_stop[2]) == 1   # B did win while the robot braked
+
+
 def test_after_a_kidnap_the_held_stop_it_passes_anchors_the_run_ups_where_it_was_due():
     def carried(keep: bool) -> tuple[Brain, Run, list[float | None], float]:
         brain, run = taught()
