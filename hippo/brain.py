@@ -286,6 +286,9 @@ class Brain:
         ev = seen.event
         self.readouts = seen.timing.readouts
         self.non_occurrence = seen.timing.omitted  # type: ignore[assignment]
+        if (self.t < self._settle_until and ev.winner is not None
+                and self.kind(ev.winner) == StateKind.COLOUR):
+            self._settle_until = self.t  # a floor colour is sensed, not remembered: decide
         if self.t < self._settle_until and self.localiser is not None:
             if ev.changed and self.layer.key(ev.winner).kind == "place":
                 self.localiser.observe(ev.winner, self.t, self.graph)

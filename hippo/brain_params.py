@@ -27,6 +27,9 @@ class BrainParams:
         many consecutive ticks of it, so a stall at a corner is not a stop.
     settle_time: after being lifted the robot explores this long (s) before it trusts its
         place state again (learned place cells need a few seconds to recover; SMC09 Fig. 7).
+        A floor colour that wins ends settling at once, with or without ``relocalise``: it
+        is sensed now, not remembered (place preference: put down 23 cm before the goal
+        zone, the robot crossed it while settling and turned round 2 cm past it).
     relocalise: after being lifted, explore until the map recognises the place changes the
         robot sees (:class:`~hippo.cognitive_map.localise.MapLocaliser`) instead of for
         ``settle_time``; None (default): ``settle_time``. It avoids decisions on a stale

@@ -632,3 +632,29 @@ def test_a_move_with_no_direction_keeps_the_robots_heading():
     assert abs(brain.decide.heading) == pytest.approx(math.pi / 2)
     with pytest.raises(ValueError, match="min_heading_r"):
         BrainParams(min_heading_r=1.5)
+
+
+@pytest.mark.parametrize("relocalise", [False, True])
+def test_a_floor_colour_ends_settling_after_a_lift(relocalise):
+    """A lifted robot settles (explores) before it trusts its place code, which remembers where
+    it was carried from; a floor colour is no such memory: once it wins, the robot decides at
+    once (place preference: the robot put down 23 cm before the goal zone had crossed the
+    zone by the end of settling and turned round). Before: 10 s more of settling."""
+    from hippo.cognitive_map import LocaliserParams
+
+    brain, run = make(settle_time=10.0,
+                      relocalise=LocaliserParams(max_time=30.0) if relocalise else None)
+    run.ticks(20, "B", moving=True)
+    brain.lifted()
+    assert all(t.settling for t in run.ticks(3, "A", moving=True))
+    ticks = []
+    for _ in range(3):
+        run.tick += 1
+        obs = Observation(round(run.tick * DT, 9), run.tick, np.full(8, 0.5), 1, False,
+                          np.array([1.0, 0.0, 0.0]), True)
+        ticks.append(brain.step(obs))
+    assert not ticks[-1].settling
+    assert brain.kind(ticks[-1].winner) == StateKind.COLOUR
+    # without the colour it settles on (a place the map does not know yet, or 10 s)
+    brain.lifted()
+    assert all(t.settling for t in run.ticks(10, "A", moving=True))
