@@ -209,12 +209,9 @@ def test_prime_continues_from_the_sensed_history():
     assert not np.allclose(model.step(U[300]), b)
 
 
-def test_a_wanted_stop_is_recognised_from_a_coactive_place():
-    """The drive of a stop bound to place C makes the robot approach it when C is almost as
-    active as the winner (learned place cells alternate between neighbouring prototypes)."""
-    _arena, world = corridor_world()
-    agent = Agent(_Recorder(), drives={"cp": DriveParams()}, sensors=world.sensors,
-                  robot=world.robot, seed=0, params=AgentParams(coactive=0.6))
+def _stop_after_a_move(agent: Agent) -> tuple[int, int, int]:
+    """A map ``Q -> C -> still@C -> moving@C`` whose wait serves drive ``cp`` (level 1):
+    returns ``(Q, C, still@C)``."""
     layer, graph = agent.layer, agent.graph
     q, c = layer.recruit("place", 0), layer.recruit("place", 1)
     still, moving = layer.recruit("still", None, c), layer.recruit("moving", None, c)
@@ -223,6 +220,17 @@ def test_a_wanted_stop_is_recognised_from_a_coactive_place():
     graph.add_transition(still, moving, Action.wait(), 10.0)
     agent.drives.reward("cp", (still, moving))
     agent.drives.set_level("cp", 1.0)
+    return q, c, still
+
+
+def test_a_wanted_stop_is_recognised_from_a_coactive_place():
+    """The drive of a stop bound to place C makes the robot approach it when C is almost as
+    active as the winner (learned place cells alternate between neighbouring prototypes)."""
+    _arena, world = corridor_world()
+    agent = Agent(_Recorder(), drives={"cp": DriveParams()}, sensors=world.sensors,
+                  robot=world.robot, seed=0, params=AgentParams(coactive=0.6))
+    layer = agent.layer
+    q, c, still = _stop_after_a_move(agent)
     decide = agent.brain.decide
     agent.brain.state, decide.mode, decide.current = q, Mode.MOVE, (q, c)
 
@@ -254,14 +262,8 @@ def test_a_stop_is_not_recognised_softly_clearly_short_of_its_run_up():
     agent = Agent(_Recorder(), drives={"cp": DriveParams(), "other": DriveParams()},
                   sensors=world.sensors, robot=world.robot, seed=0,
                   params=AgentParams(coactive=0.6, runup_window=30.0))
-    layer, graph, brain = agent.layer, agent.graph, agent.brain
-    q, c = layer.recruit("place", 0), layer.recruit("place", 1)
-    still, moving = layer.recruit("still", None, c), layer.recruit("moving", None, c)
-    graph.add_transition(q, c, Action.move(0.0, 20.0), 4.0)
-    graph.add_transition(c, still, Action.wait(), 3.0)
-    graph.add_transition(still, moving, Action.wait(), 10.0)
-    agent.drives.reward("cp", (still, moving))
-    agent.drives.set_level("cp", 1.0)
+    layer, brain = agent.layer, agent.brain
+    q, c, still = _stop_after_a_move(agent)
     brain.runups = {"cp": 100.0, "other": 80.0}           # taught: other -> cp -> other
     brain.runup_after = {"cp": "other", "other": "cp"}
     layer.place_activity = np.array([0.9, 0.6])   # C coactive
