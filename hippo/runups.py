@@ -6,7 +6,8 @@ fields drift by some 30 cm from lap to lap; the run between two checkpoints does
 here use it (parameters in :class:`~hippo.brain_params.BrainParams`):
 
 - the gate (``runup_tolerance``, ``runup_window``): an approach does not end before the run-up;
-- soft recognition (coactive or aliased places) is not trusted clearly short of the run-up;
+- soft recognition (coactive or aliased places) is trusted only where the run-ups say the stop
+  is due;
 - the odometric stop (``runup_stop``, ``runup_hops``; off by default): a taught stop is made
   by its run-up where its place neither wins nor is recognised softly;
 - anchoring: only a wait where the anchor said moves it, and a run-up that two stops by place
@@ -199,28 +200,45 @@ class RunupRules:
         runup, ran = anchored
         return runup + self.b.p.runup_stop <= ran < runup + self.b.p.runup_window
 
-    def _short_of(self, name: str) -> bool:
-        """Has the robot run clearly too little since its last wait to be at drive ``name``'s
-        stop? The stop is due the taught run-ups on from that wait: walking the taught order
-        back from ``name`` (each drive's run-up counts from the drive taught before it) to the
-        drive of the last wait, their sum (one run-up in order, two after a stop missed, a
-        lap right after a wait for ``name`` itself). "Clearly": by more than
-        ``runup_window``. No anchor, or the last wait's drive not in ``name``'s taught chain:
-        no bound. Soft recognition asks this: a learned place coactive or aliased 10-150 cm
-        after a wait stood in for a stop farther on (or for the same one again), 6 misplaced
-        stops in 6 h of deployment, tuning seed 1."""
+    def _not_due(self, name: str) -> bool:
+        """Is the robot, by its run since its last wait, clearly not where drive ``name``'s
+        stop is due? The stop is due the taught run-ups on from that wait: walking the taught
+        order back from ``name`` (each drive's run-up counts from the drive taught before it)
+        to the drive of the last wait, their sum ``s`` (one run-up in order, two after a stop
+        missed, a lap right after a wait for ``name`` itself); and, when that walk closes a
+        lap ``L`` (every drive of the loop has a run-up), again at ``s + k L`` (the stop
+        missed, a lap later). "Clearly": farther than ``runup_window`` from every such point
+        (before ``s``, or between two of them). No anchor, or the last wait's drive not in
+        ``name``'s taught chain: no bound (and no lap: no bound past ``s``). Soft recognition
+        asks this: a place coactive or aliased 10-150 cm after a wait stood in for a stop
+        farther on, or for the same one again (6 misplaced stops in 6 h of deployment, tuning
+        seed 1), and one coactive at checkpoint 1 for checkpoint 3, missed 100 cm before, made
+        that stop there, and the robot set off the wrong way round from it (tuning seed 1,
+        18 h)."""
         b = self.b
         if b.p.runup_window <= 0 or b.wait_ended_at is None or b.last_wait_drive is None:
             return False
-        due, d = 0.0, name
+        due, d, lap, window = None, name, 0.0, b.p.runup_window
         for _ in range(len(b.runups)):
             if d not in b.runups:
-                return False
-            due += b.runups[d]
+                break
+            lap += b.runups[d]
             d = b.runup_after.get(d)
-            if d == b.last_wait_drive:
-                return b.odometer - b.wait_ended_at < due - b.p.runup_window
-        return False
+            if d == b.last_wait_drive and due is None:
+                due = lap
+            if d == name:
+                break
+        else:
+            d = None
+        if due is None:
+            return False
+        ran = b.odometer - b.wait_ended_at
+        if ran < due - window:
+            return True
+        if d != name or lap <= 2 * window:   # no closed lap: no bound past the first point
+            return False
+        k = round((ran - due) / lap)
+        return abs(ran - (due + k * lap)) > window
 
     def _before_runup(self) -> bool:
         """Has the robot, approaching a stop with a taught run-up, run clearly less than it

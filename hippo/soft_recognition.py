@@ -10,8 +10,8 @@ that stop as if it had entered ``C`` when
   (``BrainParams.aliases``, ``alias_tolerance``; :meth:`SoftRecognition.alias_of`),
 
 and the map would choose that stop on entering ``C`` (its drive beats those of the moves out
-of ``C``), unless the robot's run since its last wait says it cannot be there yet
-(:meth:`~hippo.runups.RunupRules._short_of`). Parameters in
+of ``C``), unless the robot's run since its last wait says the stop is not due here
+(:meth:`~hippo.runups.RunupRules._not_due`). Parameters in
 :class:`~hippo.brain_params.BrainParams`.
 """
 
@@ -33,7 +33,7 @@ class SoftRecognition:
     b: Any
     mode: Mode
     _runup_due: Any  # the run-up rules' (:class:`~hippo.runups.RunupRules`)
-    _short_of: Any   # the same
+    _not_due: Any    # the same
     current: Any
     current_since: float
     _approach_t0: float
@@ -59,7 +59,7 @@ class SoftRecognition:
         top = float(acts.max())
         here = b.state if b.kind(b.state) == StateKind.PLACE else None
         for name in b.drives.names:
-            if not self._wanted(name) or self._short_of(name):
+            if not self._wanted(name) or self._not_due(name):
                 continue
             for c, a in self._taught_stops(name):
                 kc = b.layer.key(c)

@@ -252,12 +252,12 @@ def test_a_wanted_stop_is_recognised_from_a_coactive_place():
     assert agent.mode == Mode.MOVE
 
 
-def test_a_stop_is_not_recognised_softly_clearly_short_of_its_run_up():
+def test_a_stop_is_recognised_softly_only_where_its_run_ups_say_it_is_due():
     """Soft recognition asks the run-up rules: the stop is due the taught run-ups on from the
     last wait (back along the taught order: one run-up right after the drive taught before
-    the stop's, a lap right after a wait for its own drive). Clearly short of that (by more
-    than runup_window) it is not recognised softly; a drive outside the taught chain or no
-    anchor sets no bound."""
+    the stop's, a lap right after a wait for its own drive), and a lap after that again.
+    Farther than runup_window from those points it is not recognised softly; a drive
+    outside the taught chain or no anchor sets no bound."""
     _arena, world = corridor_world()
     agent = Agent(_Recorder(), drives={"cp": DriveParams(), "other": DriveParams()},
                   sensors=world.sensors, robot=world.robot, seed=0,
@@ -277,8 +277,13 @@ def test_a_stop_is_not_recognised_softly_clearly_short_of_its_run_up():
 
     assert not approaches("other", 60.0)             # in order: 100 cm due, 60 run
     assert approaches("other", 75.0)                 # within runup_window of it
+    assert approaches("other", 125.0)
+    assert not approaches("other", 140.0)            # 40 cm past it: missed, behind
+    assert not approaches("other", 190.0)
+    assert approaches("other", 270.0)                # a lap (180 cm) later it is due again
     assert not approaches("cp", 140.0)               # its own wait: a lap (180 cm) due
     assert approaches("cp", 160.0)
+    assert not approaches("cp", 220.0)
     assert approaches("elsewhere", 5.0)              # not in the taught chain: no bound
     assert approaches(None, 0.0)                     # no anchor (after a lift): no bound
 
