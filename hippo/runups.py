@@ -218,7 +218,7 @@ class RunupRules:
         b = self.b
         if b.p.runup_window <= 0 or b.wait_ended_at is None or b.last_wait_drive is None:
             return False
-        due, d, lap, window = None, name, 0.0, b.p.runup_window
+        due, d, lap, closed, window = None, name, 0.0, False, b.p.runup_window
         for _ in range(len(b.runups)):
             if d not in b.runups:
                 break
@@ -227,15 +227,14 @@ class RunupRules:
             if d == b.last_wait_drive and due is None:
                 due = lap
             if d == name:
+                closed = True
                 break
-        else:
-            d = None
         if due is None:
             return False
         ran = b.odometer - b.wait_ended_at
         if ran < due - window:
             return True
-        if d != name or lap <= 2 * window:   # no closed lap: no bound past the first point
+        if not closed or lap <= 2 * window:   # no closed lap: no bound past the first point
             return False
         k = round((ran - due) / lap)
         return abs(ran - (due + k * lap)) > window

@@ -59,7 +59,7 @@ class SoftRecognition:
         top = float(acts.max())
         here = b.state if b.kind(b.state) == StateKind.PLACE else None
         for name in b.drives.names:
-            if not self._wanted(name) or self._not_due(name):
+            if not self._wanted(name):
                 continue
             for c, a in self._taught_stops(name):
                 kc = b.layer.key(c)
@@ -69,6 +69,9 @@ class SoftRecognition:
                 alias = p.aliases and here is not None and self.alias_of(here, c)
                 if float(acts[kc.index]) < p.coactive * top and not alias:  # type: ignore[index]
                     continue
+                # only where the run-ups since the last wait say the stop is due
+                if self._not_due(name):
+                    break
                 # only if the map would choose that stop on entering C (drives compete)
                 if max(b.graph.outgoing(c), key=self._activity) != (c, a):
                     continue
