@@ -14,7 +14,6 @@ Writes ``metrics.json`` (the waits reproduced at each checkpoint during the patr
 """
 
 import argparse
-import math
 from enum import IntEnum
 
 from hippo.agent import Agent, AgentParams
@@ -42,10 +41,10 @@ def main(seed: int = 0, out: str = "out/patrol-square", quick: bool = False,
     places.prime(tour.sensors[-500:])   # the robot's reservoir ran all along: go on from there
     agent = Agent(places, drives=dict.fromkeys(WAITS, DriveParams(epsilon=0.01)), seed=seed,
                   params=AgentParams(states=PLACE_STATES, planner=PLANNER))
-    s = Session(world, agent, obs=tour[-1], phase=Phase.LEASH)
+    s, lesson = Session(world, agent, obs=tour[-1], phase=Phase.LEASH), LapCounter(ROUTE)
     s.lead(ROUTE.loop_from(s.truth.pose))   # one lap on the leash: the map of the loop
     for name, (point, wait) in WAITS.items():   # the lesson: hold it at each checkpoint
-        s.run(seconds=300, until=lambda o, p=point: math.dist(s.truth.pose[:2], p) < 12.0)
+        s.run(seconds=300, until=lambda o, p=point: lesson.reached(*s.truth.pose[:2], p))
         s.block(wait)
         agent.reward(name)                      # linked to the wait that just ended
     s.phase, laps = Phase.PATROL, LapCounter(ROUTE)

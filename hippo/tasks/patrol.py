@@ -58,6 +58,7 @@ ARENA_CHECKPOINTS: dict[str, list[tuple[float, float]]] = {
 HIREL_WAITS = [24.1, 19.1, 11.6, 16.0]
 #: a pass by a checkpoint: the robot's progress along the route within this many cm of it
 PASS_RADIUS = 30.0
+REACH_RADIUS = 20.0   # the lesson blocks the robot where it passes a checkpoint within this
 
 
 class PatrolPhase(IntEnum):
@@ -257,6 +258,12 @@ class PatrolCourse:
     def near(self, point: Sequence[float], radius: float) -> bool:
         return math.dist(self.s.truth.pose[:2], point) < radius
 
+    def reached(self, checkpoint: Sequence[float], radius: float = REACH_RADIUS) -> bool:
+        """Has the robot come to ``checkpoint`` (:meth:`LapCounter.reached`)? The lesson
+        blocks it there, not some way before it: every taught stop and run-up counts from
+        there."""
+        return self.loop.reached(*self.s.truth.pose[:2], checkpoint, radius)
+
     def learned_waits(self) -> list[float | None]:
         """Per checkpoint, the median learned delay of the transitions its drive is linked to
         (the wait the robot will make there), or None."""
@@ -308,8 +315,8 @@ class PatrolCourse:
                 self.laps()
                 ahead = (self.route.progress(*c) - self.loop.progress) % self.route.length  # type: ignore[operator]
                 s.run(int((60.0 + 2.0 * ahead / 5.0) / dt),
-                      until=lambda o, c=c: self.near(c, 12.0))
-                if not self.near(c, 12.0):
+                      until=lambda o, c=c: self.reached(c))
+                if not self.reached(c):
                     s.lead(self.from_here(self.route.leg(s.truth.pose, c)))
                 s.block(waits[k])
                 agent.reward(self.names[k])
@@ -353,7 +360,7 @@ class PatrolCourse:
         s.phase, s.trial = PatrolPhase.ADAPTATION, 0
         s.run(int(400 / dt), until=lambda o: self.near(c1, 30.0) and (
             self.state_kind() == StateKind.STILL or agent.mode in (Mode.APPROACH, Mode.WAIT)
-            or self.near(c1, 12.0)))
+            or self.reached(c1)))
         if agent.mode == Mode.APPROACH:  # about to stop: let it
             s.run(int(20 / dt), until=lambda o: agent.mode != Mode.APPROACH)
         s.block(longer, extra=10.0)

@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite, check_real
+from hippo._checks import check_finite, check_positive, check_real
 from hippo.types import Mode, wrap_angle
 
 __all__ = ["AngleLaps", "LapCounter", "Route", "lead_from", "passes", "progress_along",
@@ -240,6 +240,18 @@ class LapCounter:
             self.turns += ((s - self._s + L / 2) % L - L / 2) / L
         self._s = s
         return self.turns
+
+    def reached(self, x: float, y: float, point: Sequence[float], radius: float = 20.0) -> bool:
+        """Update with ``(x, y)``; is the robot at ``point`` (a checkpoint): within ``radius`` cm
+        of it, and its progress along the route at or past the point's? A teacher who holds the
+        robot *at* a checkpoint uses it: one who holds it as soon as it comes within some
+        radius teaches a stop that far before the checkpoint, and every run-up from there."""
+        self.update(x, y)
+        if math.dist((x, y), point) >= check_positive("radius", radius):
+            return False
+        L = self.route.length
+        behind = (self.route.progress(*point) - self._s + L / 2) % L - L / 2  # type: ignore[operator]
+        return behind <= 0.0
 
 
 class AngleLaps:

@@ -122,3 +122,28 @@ def test_patrol_rounds_count_every_checkpoint_served_in_any_order():
     # shuttling between two of three checkpoints: no round
     assert patrol_rounds(made([(0, 0), (1, 1)] * 4), 3, phase=4) == (0, 8, 8)
     assert patrol_rounds(made([(0, 0), (1, 1)], phase=3), 2, phase=4) == (0, 0, 0)
+
+
+def test_the_lesson_blocks_the_robot_at_a_checkpoint_not_before_it():
+    from types import SimpleNamespace
+
+    from hippo.tasks.patrol import PatrolCourse
+
+    cps = ARENA_CHECKPOINTS["patrol-course"]
+    route = patrol_route("patrol-course", cps)
+    pose = [0.0, 0.0, 0.0]
+    s = SimpleNamespace(agent=None, world=SimpleNamespace(dt=0.2),
+                        truth=SimpleNamespace(pose=pose))
+    course = PatrolCourse(s, route, cps, ["a", "b", "c"])
+    s_cp = route.progress(*cps[1])
+    verdicts = []
+    for ds in (-40.0, -15.0, -5.0, -1.0, 1.0, 6.0, 15.0):   # along the route, as it drives
+        x, y, h = route.at(s_cp + ds)
+        pose[:] = [x, y, h]
+        verdicts.append(course.reached(cps[1]))
+    # 15 cm before it (within the old 12-cm disc's reach) is not there yet; at and past it is
+    assert verdicts == [False, False, False, False, True, True, True]
+    # past it but far off to the side: not at the checkpoint
+    x, y, h = route.at(s_cp + 1.0)
+    pose[:] = [x + 25.0 * np.sin(h), y - 25.0 * np.cos(h), h]
+    assert not course.reached(cps[1])

@@ -209,3 +209,14 @@ def test_a_leash_to_a_waypoint_behind_a_wall_goes_round_it():
     assert lead_from(two, (20.0, 20.0), [(40.0, 30.0), (60.0, 30.0)]) == [(40.0, 30.0),
                                                                           (60.0, 30.0)]
     assert lead_from(two, (20.0, 20.0), []) == []
+
+
+def test_a_lap_counter_says_the_robot_reached_a_point_only_at_or_past_it():
+    r = Route([(0, 0), (100, 0), (100, 50), (0, 50)])
+    laps = LapCounter(r)
+    seen = [laps.reached(x, 2.0, (60.0, 0.0)) for x in (30.0, 45.0, 55.0, 59.0, 60.5, 64.0, 79.0)]
+    assert seen == [False, False, False, False, True, True, True]   # 20-cm disc: 45 is in it
+    assert not laps.reached(60.5, 25.0, (60.0, 0.0))   # past it along the route, but 25 cm off
+    assert not laps.reached(85.0, 0.0, (60.0, 0.0), radius=20.0)   # past it and out of reach
+    with pytest.raises(ValueError, match="radius"):
+        laps.reached(60.0, 0.0, (60.0, 0.0), radius=0.0)
