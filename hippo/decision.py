@@ -55,6 +55,7 @@ class Decider(SoftRecognition, RunupRules):
         self.b = brain
         self._visits: deque[tuple[float, int]] = deque()
         self._explore_until = -math.inf
+        self._companions: dict[tuple[int, int], dict[int, tuple[int, float]]] = {}
         self.reset_episode()
 
     def reset_episode(self) -> None:
@@ -71,6 +72,7 @@ class Decider(SoftRecognition, RunupRules):
         self._inhibited_at: dict[str, tuple[float, float]] = {}  # ... and where (path int.)
         self._stopped_at: float | None = None   # odometer where the current stop began
         self._runup_fired = False               # the current approach is by run-up alone
+        self._by_companion = False              # ... by a companion place (soft recognition)
         self._stop_by_runup = False             # ... and so is the current stop
         # the approach is timed from entering the stop's place (not from a soft recognition
         # or a run-up) and the run-up gate did not hold it: the stop's delay is a measurement
@@ -194,7 +196,7 @@ class Decider(SoftRecognition, RunupRules):
         keep_heading = self.mode in (Mode.MOVE, Mode.APPROACH) and self.heading is not None
         lost = Mode.MOVE if keep_heading else Mode.EXPLORE
         self.current = None
-        self._runup_fired = False
+        self._runup_fired = self._by_companion = False
         if s is None or not g.has_state(s):
             self.mode = lost
             self.current_since = b.t
@@ -309,6 +311,7 @@ class Decider(SoftRecognition, RunupRules):
                 self._entry_timed = False   # held by the run-up gate: no longer the map's timing
             if (over or leaving or self._past_runup()) and not gated:
                 self.stop_untimed = not (over and self._entry_timed)
+                self.note_stop()  # companions: the place that won where it stops
                 ctx = b.layer.key(self.current[1]).context
                 if ctx is not None:
                     b.layer.bind_context(ctx)  # it stops *for* this place

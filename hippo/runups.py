@@ -39,6 +39,7 @@ class RunupRules:
     _stop_by_runup: bool
     _runup_fired: bool
     _entry_timed: bool
+    _by_companion: bool
     # class defaults: a decider restored from a snapshot saved before these existed
     _reanchor: bool = False                     # carried, drives kept: no anchor yet
     _due_anchor: tuple[str, float] | None = None  # (drive, time) a passed stop was due
@@ -158,7 +159,7 @@ class RunupRules:
                 self.mode = Mode.APPROACH
                 self._entry_timed = False
                 self._approach_t0 = b.t - float(delay or 0.0)
-                self._runup_fired = True
+                self._runup_fired, self._by_companion = True, False
                 return True
         return False
 
@@ -215,10 +216,44 @@ class RunupRules:
         seed 1), and one coactive at checkpoint 1 for checkpoint 3, missed 100 cm before, made
         that stop there, and the robot set off the wrong way round from it (tuning seed 1,
         18 h)."""
+        walk = self._due_walk(name)
+        if walk is None:
+            return False
+        b = self.b
+        due, lap, closed = walk
+        ran, window = b.odometer - b.wait_ended_at, b.p.runup_window
+        if ran < due - window:
+            return True
+        if not closed or lap <= 2 * window:   # no closed lap: no bound past the first point
+            return False
+        k = round((ran - due) / lap)
+        return abs(ran - (due + k * lap)) > window
+
+    def _due(self, name: str) -> bool:
+        """Do the run-ups say, positively, that drive ``name``'s stop is due here: an anchor
+        holds, the last wait's drive is in ``name``'s taught chain, and the robot's run since
+        that wait is within ``runup_window`` of a point where the stop is due (the walk's
+        ``s``, or ``s + k L`` when it closed a lap; see :meth:`_not_due`, which without a
+        closed lap sets no bound past ``s``)? Companion places are learned and used only
+        then (:mod:`hippo.soft_recognition`)."""
+        walk = self._due_walk(name)
+        if walk is None:
+            return False
+        due, lap, closed = walk
+        b = self.b
+        ran, window = b.odometer - b.wait_ended_at, b.p.runup_window
+        k = max(0, round((ran - due) / lap)) if closed and lap > 2 * window else 0
+        return abs(ran - (due + k * lap)) <= window
+
+    def _due_walk(self, name: str) -> tuple[float, float, bool] | None:
+        """The walk of :meth:`_not_due`: ``(s, L, closed)``, the distance from the last wait at
+        which drive ``name``'s stop is first due, the run-ups summed to where the walk
+        stopped, and whether it closed a lap; None: no bound (no anchor, no window, or the
+        last wait's drive not in ``name``'s taught chain)."""
         b = self.b
         if b.p.runup_window <= 0 or b.wait_ended_at is None or b.last_wait_drive is None:
-            return False
-        due, d, lap, closed, window = None, name, 0.0, False, b.p.runup_window
+            return None
+        due, d, lap, closed = None, name, 0.0, False
         for _ in range(len(b.runups)):
             if d not in b.runups:
                 break
@@ -229,15 +264,7 @@ class RunupRules:
             if d == name:
                 closed = True
                 break
-        if due is None:
-            return False
-        ran = b.odometer - b.wait_ended_at
-        if ran < due - window:
-            return True
-        if not closed or lap <= 2 * window:   # no closed lap: no bound past the first point
-            return False
-        k = round((ran - due) / lap)
-        return abs(ran - (due + k * lap)) > window
+        return None if due is None else (due, lap, closed)
 
     def _before_runup(self) -> bool:
         """Has the robot, approaching a stop with a taught run-up, run clearly less than it

@@ -9,10 +9,23 @@ that stop as if it had entered ``C`` when
 - the place just entered is an *alias* of ``C``: it came in ``C``'s timed sequence context
   (``BrainParams.aliases``, ``alias_tolerance``; :meth:`SoftRecognition.alias_of`),
 
+- the place just entered is a *companion* of the stop: the robot has made that stop, where
+  its run-ups said it was due, ``companions`` times while this place won, and no other place
+  (``C`` included) won at more of those stops (``BrainParams.companions``;
+  :meth:`SoftRecognition.note_stop`). It is timed from entering the companion by the mean
+  time from entering it to those stops, and used only where the run-ups say the stop is due
+  (:meth:`~hippo.runups.RunupRules._due`),
+
 and the map would choose that stop on entering ``C`` (its drive beats those of the moves out
 of ``C``), unless the robot's run since its last wait says the stop is not due here
 (:meth:`~hippo.runups.RunupRules._not_due`). Parameters in
 :class:`~hippo.brain_params.BrainParams`.
+
+A companion binds the taught stop to a second place, the one that wins where the stop is
+made, as a clone-structured graph (George et al. 2021) merges two observations that stand for
+one hidden state: the taught place ``C`` may never win in the robot's own laps and be only
+weakly coactive on some (checkpoint 1 missed 15 times in 18 h, tuning seed 3), while the
+place that wins where it stops does win there.
 """
 
 from __future__ import annotations
@@ -25,6 +38,9 @@ from hippo.types import Mode, StateKind
 
 __all__ = ["SoftRecognition"]
 
+#: a companion's time to its stop is the mean over its last stops, about this many
+_MEAN_OVER = 20
+
 
 class SoftRecognition:
     """Soft-recognition rules of a :class:`~hippo.decision.Decider` (mixed into it; reads its
@@ -34,15 +50,23 @@ class SoftRecognition:
     mode: Mode
     _runup_due: Any  # the run-up rules' (:class:`~hippo.runups.RunupRules`)
     _not_due: Any    # the same
+    _due: Any        # the same
     current: Any
     current_since: float
     _approach_t0: float
     _entry_timed: bool
+    _by_companion: bool = False  # the current approach is by a companion (class default:
+    # a decider restored from a snapshot saved before companions existed)
+    #: (C, still@C) -> {place W: (due stops made while W won, mean time from entering W)}
+    _companions: dict[tuple[int, int], dict[int, tuple[int, float]]] | None = None
 
     def _wanted(self, name: str) -> bool:  # provided by the Decider
         raise NotImplementedError
 
     def _activity(self, tr: Any) -> float:  # provided by the Decider
+        raise NotImplementedError
+
+    def wait_drive(self) -> int:  # provided by the Decider
         raise NotImplementedError
 
     def recognise_stop(self) -> None:
@@ -67,7 +91,9 @@ class SoftRecognition:
                         or kc.index >= acts.size):  # type: ignore[operator]
                     continue
                 alias = p.aliases and here is not None and self.alias_of(here, c)
-                if float(acts[kc.index]) < p.coactive * top and not alias:  # type: ignore[index]
+                soft = float(acts[kc.index]) >= p.coactive * top or alias  # type: ignore[index]
+                t0 = None if soft else self._companion_start(here, (c, a), name)
+                if not soft and t0 is None:
                     continue
                 # only where the run-ups since the last wait say the stop is due
                 if self._not_due(name):
@@ -76,10 +102,53 @@ class SoftRecognition:
                 if max(b.graph.outgoing(c), key=self._activity) != (c, a):
                     continue
                 self.current, self.current_since = (c, a), b.t
-                # timed from the recognition, or from entering the alias (as if it were C)
-                self.mode, self._approach_t0 = Mode.APPROACH, b.entered_at if alias else b.t
-                self._entry_timed = bool(alias)
+                # timed from the recognition, or from entering the alias (as if it were C),
+                # or by the companion's time to the stop from entering it
+                self.mode = Mode.APPROACH
+                self._approach_t0 = t0 if t0 is not None else b.entered_at if alias else b.t
+                self._entry_timed, self._by_companion = bool(alias), t0 is not None
                 return
+
+    def _companion_start(self, here: int | None, stop: tuple[int, int], name: str
+                         ) -> float | None:
+        """If ``here``, the place the robot is in, is a companion of ``stop`` (``(C,
+        still@C)``, for drive ``name``: it won at ``companions`` stops or more, and at no
+        fewer than any other place, ``C`` included) whose time to the stop is not yet over,
+        and the run-ups say the stop is due: the approach start that times the stop as the
+        companion does (the map's delay of ``stop`` before the companion's stop time); else
+        None."""
+        b = self.b
+        n = b.p.companions
+        if n <= 0 or here is None or not self._companions:
+            return None
+        table = self._companions.get(stop, {})
+        seen = table.get(here)
+        delay = b.graph.delay(stop)
+        if (seen is None or seen[0] < max(n, *(v[0] for v in table.values())) or delay is None
+                or b.t - b.entered_at > seen[1] or not self._due(name)):
+            return None
+        return b.entered_at + seen[1] - float(delay)
+
+    def note_stop(self) -> None:
+        """The robot stops now for its current stop ``(C, still@C)``: if the run-ups say the
+        stop is due here and the approach was not by a companion, count the stop for the
+        place ``W`` that wins (``C`` itself included: a companion must have won at as many
+        stops as ``C``) and average the time from entering ``W`` to it (over about the last
+        ``_MEAN_OVER`` stops). Bounded: one entry per taught stop and place."""
+        b = self.b
+        w, stop = b.state, self.current
+        if (b.p.companions <= 0 or stop is None or w is None or self._by_companion
+                or b.kind(w) != StateKind.PLACE or b.kind(stop[1]) != StateKind.STILL):
+            return
+        k = self.wait_drive()
+        if k < 0 or not self._due(b.drives.names[k]):
+            return
+        if self._companions is None:
+            self._companions = {}
+        table = self._companions.setdefault(stop, {})
+        count, mean = table.get(w, (0, 0.0))
+        count += 1
+        table[w] = (count, mean + (b.t - b.entered_at - mean) / min(count, _MEAN_OVER))
 
     def _taught_stops(self, name: str) -> Iterator[tuple[int, int]]:
         """The stops ``C -> still@C`` in the map that drive ``name`` is linked to (through

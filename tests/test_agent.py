@@ -288,6 +288,70 @@ def test_a_stop_is_recognised_softly_only_where_its_run_ups_say_it_is_due():
     assert approaches(None, 0.0)                     # no anchor (after a lift): no bound
 
 
+def test_a_place_that_wins_where_a_due_stop_is_made_becomes_its_companion(tmp_path):
+    """A taught stop ``C -> still@C`` made ``companions`` times where the run-ups said it was
+    due while another place W won (C did not, nor any place more often) binds the stop to W
+    too: entering W where the stop is due, the robot approaches it although C is not
+    coactive, timed by the mean time from entering W to those stops. Stops not due teach
+    nothing; where the stop is not due, or once W's time to it is over, W starts no
+    approach. The binding survives a snapshot."""
+    from hippo.snapshot import load_snapshot, save_snapshot
+
+    _arena, world = corridor_world()
+    agent = Agent(_Recorder(), drives={"cp": DriveParams(), "other": DriveParams()},
+                  sensors=world.sensors, robot=world.robot, seed=0,
+                  params=AgentParams(coactive=0.6, runup_window=30.0, companions=2))
+    layer, brain, decide = agent.layer, agent.brain, agent.brain.decide
+    q, c, still = _stop_after_a_move(agent)            # C -> still@C: 3 s after entering C
+    w = layer.recruit("place", 2)
+    brain.runups = {"cp": 100.0, "other": 80.0}           # taught: other -> cp -> other
+    brain.runup_after = {"cp": "other", "other": "cp"}
+    brain.last_wait_drive = "other"
+    layer.place_activity = np.array([0.1, 0.2, 0.9])     # W wins, C far from coactive
+
+    def stop_in_w(ran: float, since: float) -> None:
+        """The robot, approaching C's stop (recognised earlier), stops ``since`` s after
+        entering W, ``ran`` cm after the last wait."""
+        brain.t += 100.0
+        brain.state, brain.entered_at = w, brain.t - since
+        brain.wait_ended_at = brain.odometer - ran
+        decide.mode, decide.current, decide._approach_t0 = Mode.APPROACH, (c, still), 0.0
+        decide.check_wait()
+        assert agent.mode == Mode.WAIT
+
+    def enter_w(ran: float, since: float = 0.0) -> bool:
+        """Does the robot, moving towards C, approach its stop ``since`` s after entering W
+        (``ran`` cm after the last wait)?"""
+        brain.t += 100.0
+        brain.state, brain.entered_at = w, brain.t - since
+        brain.wait_ended_at = brain.odometer - ran
+        decide.mode, decide.current = Mode.MOVE, (q, c)
+        decide.recognise_stop()
+        return agent.mode == Mode.APPROACH and agent.current == (c, still)
+
+    stop_in_w(40.0, 4.0)                 # 60 cm short of the run-up: not due, teaches nothing
+    stop_in_w(100.0, 4.0)                # due: W counts once
+    assert not enter_w(100.0)            # once is not a companion (companions = 2)
+    stop_in_w(110.0, 5.0)
+    assert decide._companions == {(c, still): {w: (2, 4.5)}}
+    assert enter_w(100.0)                # now W stands for C where the stop is due ...
+    # ... timed by W's mean time to the stop (4.5 s from entering W), not C's 3 s
+    assert decide._approach_t0 == pytest.approx(brain.entered_at + 4.5 - 3.0)
+    assert not enter_w(40.0)             # not where the stop is due
+    assert not enter_w(100.0, since=5.0)  # W's time to the stop is over: passed it
+    decide._companions[(c, still)][c] = (3, 3.0)  # C itself won at more stops than W:
+    assert not enter_w(100.0)                      # W is no companion
+    decide._companions[(c, still)][c] = (2, 3.0)  # as many: W is one again
+    assert enter_w(100.0)
+    assert AgentParams(companions=0).companions == 0
+    agent.p = AgentParams(coactive=0.6, runup_window=30.0, companions=0)
+    assert not enter_w(100.0)            # companions = 0 disables the rule
+    brain.places = None                  # (a test stub, not storable)
+    save_snapshot(brain, tmp_path / "brain")
+    restored = load_snapshot(tmp_path / "brain")
+    assert restored.decide._companions == {(c, still): {w: (2, 4.5), c: (2, 3.0)}}
+
+
 class _StaleCells:
     """Ground-truth fields that, after a kidnap (a jump of the true position), keep reporting
     the old place for ``lag`` ticks, as a reservoir's fading memory does."""
