@@ -95,19 +95,21 @@ class BrainParams:
         unlinked stops are not). Learned place fields shift by some 30 cm
         from lap to lap; the run-up between two checkpoints does not. ``runup_window`` 0
         disables.
-    runup_stop: odometric recognition of taught stops: when the robot's last wait was for the
-        drive taught right before drive ``D``, ``D`` is active and the robot has run ``D``'s
-        run-up and ``runup_stop`` cm more without stopping for it, it stops for ``D`` now
-        (whichever place wins; an approach by place that ran on ends too). It catches the
-        passes where ``D``'s taught place neither wins nor reaches ``coactive`` (learned fields
-        drift and weaken from lap to lap) and keeps late stops from shifting the next run-ups.
-        Negative (the default) disables. Measured on tuning seeds 0-9 (patrol-course, learned
-        cells, 5 loops, 170 passes): 164 passes with a stop at ``runup_stop`` 10 against 157
-        with it off, but the ground-truth kidnap (``--quick``, seeds 1-5) then failed in 5 of 5
-        (stops drifted late after the teacher's adaptation): kept off until that is
-        understood. ``runup_hops``: it does so only where the map puts ``D``'s place at
-        most this many transitions from the place the robot is in (a run-up taught over a
-        detour must not make the robot stop far from the checkpoint).
+    runup_stop, runup_hops: odometric recognition of taught stops: when the robot's last wait
+        was for the drive taught right before drive ``D``, ``D`` is active and the robot has run
+        ``D``'s run-up and ``runup_stop`` cm more without stopping for it, it stops for ``D``
+        now (whichever place wins; an approach by place that ran on ends too), but only where
+        the map puts ``D``'s place at most ``runup_hops`` transitions from the place the robot
+        is in. It catches the passes where ``D``'s taught place neither wins nor is
+        recognised softly (learned fields drift from lap to lap: a place entered 20-40 cm late
+        made the stop that late) and keeps late stops from shifting the next run-ups; with
+        the run-up gate a stop comes within [run-up - ``runup_tolerance``, run-up +
+        ``runup_stop``] of the last wait. Negative disables. ``runup_hops`` 1 (the robot is in
+        ``D``'s place or next to it in the map): with 3, a robot that turned back after a
+        wait stopped for the next checkpoint by its run-up 60 cm short of it, and every
+        run-up after counted from there (tuning seed 13: 4 of 17 passes; seed 2, 18 h: 53
+        failures). Chosen on tuning seeds 0-39 (patrol-course, learned cells, lesson held
+        at the checkpoints) and 18-h deployments on seeds 0-3: see the README.
     release_distance: a drive that a finished wait inhibited is released (it can choose a stop
         again) only once the robot has also moved this far (cm, path integration) from where
         the wait ended. The place a stop is bound to can stay nearly as active as the winner
@@ -159,8 +161,8 @@ class BrainParams:
     companions: int = 3
     runup_tolerance: float = 5.0
     runup_window: float = 100.0
-    runup_stop: float = -1.0
-    runup_hops: int = 3
+    runup_stop: float = 10.0
+    runup_hops: int = 1
     release_distance: float = 60.0
     forget: float = 1.0
     infer_reverse: bool = False

@@ -8,8 +8,8 @@ here use it (parameters in :class:`~hippo.brain_params.BrainParams`):
 - the gate (``runup_tolerance``, ``runup_window``): an approach does not end before the run-up;
 - soft recognition (coactive or aliased places) is trusted only where the run-ups say the stop
   is due;
-- the odometric stop (``runup_stop``, ``runup_hops``; off by default): a taught stop is made
-  by its run-up where its place neither wins nor is recognised softly;
+- the odometric stop (``runup_stop``, ``runup_hops``): a taught stop is made, next to its place
+  in the map, by its run-up where its place neither wins nor is recognised softly;
 - anchoring: only a wait where the anchor said moves it, and a run-up that two stops by place
   in a row show to be too long (a detour in the lesson) is replaced;
 - re-anchoring after a lift: a robot carried in the middle of a task (a kidnap, a rescue) has
