@@ -110,6 +110,11 @@ class BrainParams:
         run-up after counted from there (tuning seed 13: 4 of 17 passes; seed 2, 18 h: 53
         failures). Chosen on tuning seeds 0-39 (patrol-course, learned cells, lesson held
         at the checkpoints) and 18-h deployments on seeds 0-3: see the README.
+    stop_timeout: a stop whose stillness the robot has not perceived ``stop_timeout`` s after
+        the proprioceptive debounce (:attr:`hippo.decision.Decider.still_grace`) is given up,
+        serving no drive, and the robot explores: a robot that stands in another stop's
+        context (held by a teacher) never perceives it, and waited for it for ever (a whole
+        patrol, held-out seed 107, before soft recognition was limited to places).
     release_distance: a drive that a finished wait inhibited is released (it can choose a stop
         again) only once the robot has also moved this far (cm, path integration) from where
         the wait ended. The place a stop is bound to can stay nearly as active as the winner
@@ -162,6 +167,7 @@ class BrainParams:
     runup_tolerance: float = 5.0
     runup_window: float = 100.0
     runup_stop: float = 10.0
+    stop_timeout: float = 2.0
     runup_hops: int = 1
     release_distance: float = 60.0
     forget: float = 1.0
@@ -182,6 +188,7 @@ class BrainParams:
         check_positive("move_timeout", self.move_timeout)
         check_positive("move_margin", self.move_margin, allow_zero=True)
         check_positive("default_delay", self.default_delay)
+        check_positive("stop_timeout", self.stop_timeout)
         if self.companions < 0:
             raise ValueError(f"companions must be >= 0, got {self.companions}")
         if self.runup_hops < 0:

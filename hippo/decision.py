@@ -331,6 +331,11 @@ class Decider(SoftRecognition, RunupRules):
             # stopped again 30 cm on: tuning seed 4, checkpoint 1)
             self._omitted_early |= over
             over = self._omitted_early and b.t - self._wait_since > self.still_grace
+            if not over and b.t - self._wait_since > self.still_grace + p.stop_timeout:
+                # the stillness it waits for has not come (the robot stands in another
+                # stop's context, or cannot stop): give the stop up, serving no drive
+                self.mode, self.current, self._waiting_on = Mode.EXPLORE, None, None
+                return
         if not over:
             return
         # the wait is over: inhibit the drives that chose it, then move on from the place; a

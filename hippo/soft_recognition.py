@@ -75,13 +75,17 @@ class SoftRecognition:
         (``_runup_due``) is due. An approach by an alias is timed from entering it."""
         b = self.b
         p = b.p
-        if self.mode != Mode.MOVE or b.state is None or self._runup_due() or p.coactive <= 0:
+        # while moving from place to place: not standing (a teacher's block holds a robot that
+        # means to move; a stop approached there waited for a stillness it already had, for
+        # ever: a whole patrol, held-out seed 107) nor just starting off after a wait
+        if (self.mode != Mode.MOVE or b.state is None or b.kind(b.state) != StateKind.PLACE
+                or self._runup_due() or p.coactive <= 0):
             return
         acts = b.layer.place_activity
         if acts.size == 0:
             return
         top = float(acts.max())
-        here = b.state if b.kind(b.state) == StateKind.PLACE else None
+        here = b.state
         for name in b.drives.names:
             if not self._wanted(name):
                 continue

@@ -252,6 +252,41 @@ def test_a_wanted_stop_is_recognised_from_a_coactive_place():
     assert agent.mode == Mode.MOVE
 
 
+def test_a_robot_standing_still_does_not_approach_a_stop_softly_and_a_stop_never_perceived_is_given_up():
+    """Soft recognition is for a robot moving from place to place: standing in a stop's
+    context (a teacher holds a robot that means to move), a coactive place does not start an
+    approach. And a stop whose stillness the robot does not perceive (it stands in another
+    stop's context) is given up still_grace + stop_timeout s after it began, serving no
+    drive: it was waited for for ever."""
+    _arena, world = corridor_world()
+    agent = Agent(_Recorder(), drives={"cp": DriveParams()}, sensors=world.sensors,
+                  robot=world.robot, seed=0, params=AgentParams(coactive=0.6))
+    layer, brain, decide = agent.layer, agent.brain, agent.brain.decide
+    q, c, still = _stop_after_a_move(agent)
+    held = layer.recruit("still", None, q)            # held at Q by a teacher
+    layer.place_activity = np.array([0.9, 0.6])       # C coactive
+    brain.state, decide.mode, decide.current = held, Mode.MOVE, (q, c)
+    decide.recognise_stop()
+    assert agent.mode == Mode.MOVE and agent.current == (q, c)
+    brain.state = q                                    # moving, in a place: it approaches
+    decide.recognise_stop()
+    assert agent.mode == Mode.APPROACH and agent.current == (c, still)
+    # the approach is over, the robot waits for its stillness in C's context, standing in Q's
+    brain.state = held
+    decide._wait_on((c, still))
+    give_up = decide.still_grace + brain.p.stop_timeout
+    level = agent.drives.level("cp")
+    for _ in range(int(give_up / brain.p.dt) - 1):
+        brain.t += brain.p.dt
+        decide.check_wait()
+        assert agent.mode == Mode.WAIT
+    for _ in range(3):
+        brain.t += brain.p.dt
+        decide.check_wait()
+    assert agent.mode == Mode.EXPLORE and agent.current is None
+    assert agent.drives.level("cp") == level and not agent.drives.is_inhibited("cp")
+
+
 def test_a_stop_is_recognised_softly_only_where_its_run_ups_say_it_is_due():
     """Soft recognition asks the run-up rules: the stop is due the taught run-ups on from the
     last wait (back along the taught order: one run-up right after the drive taught before
