@@ -252,7 +252,7 @@ def test_a_wanted_stop_is_recognised_from_a_coactive_place():
     assert agent.mode == Mode.MOVE
 
 
-def test_a_robot_standing_still_does_not_approach_a_stop_softly_and_a_stop_never_perceived_is_given_up():
+def test_no_soft_approach_standing_still_and_a_stop_never_perceived_is_given_up():
     """Soft recognition is for a robot moving from place to place: standing in a stop's
     context (a teacher holds a robot that means to move), a coactive place does not start an
     approach. And a stop whose stillness the robot does not perceive (it stands in another
