@@ -84,8 +84,7 @@ class SoftRecognition:
         acts = b.layer.place_activity
         if acts.size == 0:
             return
-        top = float(acts.max())
-        here = b.state
+        top, here = float(acts.max()), b.state
         for name in b.drives.names:
             if not self._wanted(name):
                 continue
@@ -94,7 +93,7 @@ class SoftRecognition:
                 if (c == b.state or kc.kind != StateKind.PLACE
                         or kc.index >= acts.size):  # type: ignore[operator]
                     continue
-                alias = p.aliases and here is not None and self.alias_of(here, c)
+                alias = p.aliases and self.alias_of(here, c)
                 soft = float(acts[kc.index]) >= p.coactive * top or alias  # type: ignore[index]
                 t0 = None if soft else self._companion_start(here, (c, a), name)
                 if not soft and t0 is None:
@@ -113,8 +112,7 @@ class SoftRecognition:
                 self._entry_timed, self._by_companion = bool(alias), t0 is not None
                 return
 
-    def _companion_start(self, here: int | None, stop: tuple[int, int], name: str
-                         ) -> float | None:
+    def _companion_start(self, here: int, stop: tuple[int, int], name: str) -> float | None:
         """If ``here``, the place the robot is in, is a companion of ``stop`` (``(C,
         still@C)``, for drive ``name``: it won at ``companions`` stops or more, and at no
         fewer than any other place, ``C`` included) whose time to the stop is not yet over,
@@ -123,7 +121,7 @@ class SoftRecognition:
         None."""
         b = self.b
         n = b.p.companions
-        if n <= 0 or here is None or not self._companions:
+        if n <= 0 or not self._companions:
             return None
         table = self._companions.get(stop, {})
         seen = table.get(here)

@@ -58,7 +58,6 @@ ARENA_CHECKPOINTS: dict[str, list[tuple[float, float]]] = {
 HIREL_WAITS = [24.1, 19.1, 11.6, 16.0]
 #: a pass by a checkpoint: the robot's progress along the route within this many cm of it
 PASS_RADIUS = 30.0
-REACH_RADIUS = 20.0   # the lesson blocks the robot where it passes a checkpoint within this
 
 
 class PatrolPhase(IntEnum):
@@ -258,11 +257,11 @@ class PatrolCourse:
     def near(self, point: Sequence[float], radius: float) -> bool:
         return math.dist(self.s.truth.pose[:2], point) < radius
 
-    def reached(self, checkpoint: Sequence[float], radius: float = REACH_RADIUS) -> bool:
+    def reached(self, checkpoint: Sequence[float]) -> bool:
         """Has the robot come to ``checkpoint`` (:meth:`LapCounter.reached`)? The lesson
         blocks it there, not some way before it: every taught stop and run-up counts from
         there."""
-        return self.loop.reached(*self.s.truth.pose[:2], checkpoint, radius)
+        return self.loop.reached(*self.s.truth.pose[:2], checkpoint)
 
     def learned_waits(self) -> list[float | None]:
         """Per checkpoint, the median learned delay of the transitions its drive is linked to
