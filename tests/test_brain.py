@@ -658,3 +658,49 @@ def test_a_floor_colour_ends_settling_after_a_lift(relocalise):
     # without the colour it settles on (a place the map does not know yet, or 10 s)
     brain.lifted()
     assert all(t.settling for t in run.ticks(10, "A", moving=True))
+
+
+def test_a_lesson_repeated_in_another_checkpoints_place_teaches_only_its_run_up():
+    # checkpoint "one" is taught at A (a 5-s wait), "two" at B (3 s). The lesson repeats "two"
+    # for its run-up and the robot, held at B's spot, is in A's place (an aliased place):
+    # A's wait keeps its 5 s and serves "one" only, "two" keeps its goal at B, and the repeat
+    # still teaches the run-up. A drive with no goal of its own yet is linked there all the
+    # same (tuning seed 60: checkpoint 3 waited checkpoint 1's 24 s wherever its place won)
+    places = Stub()
+    p = BrainParams(states=StateLayerParams(normalize="fixed", place_scale=0.5, context_time=1.0),
+                    settle_time=0.0, cycle_visits=100)
+    brain = Brain(places, drives={"one": DriveParams(), "two": DriveParams()}, params=p)
+    run = Run(brain, places)
+    for d in ("one", "two"):
+        brain.drives.inhibit(d)                # the teacher chooses the stops
+
+    def lesson(where: str, still_ticks: int, drive: str) -> None:
+        run.ticks(15, "C", moving=True)
+        run.ticks(10, where, moving=True)
+        run.ticks(still_ticks, where, moving=False)
+        brain.reward(drive)
+        run.ticks(5, where, moving=True)
+
+    def wait_at(where: str) -> tuple[int, int]:
+        ctx = brain.layer.find("place", "ABC".index(where))
+        return brain.layer.find("still", context=ctx), brain.layer.find("moving", context=ctx)
+
+    lesson("A", 25, "one")
+    lesson("B", 15, "two")
+    wait_a, wait_b = wait_at("A"), wait_at("B")
+    delay = brain.graph.delay(wait_a), brain.timing.cells.learned_delay(wait_a)
+    assert delay[0] == pytest.approx(4.6, abs=0.6)
+    assert delay[1] == pytest.approx(delay[0], abs=0.5)
+    assert brain.runup_after["two"] == "one"
+    lesson("A", 40, "two")                     # the repeat, 8 s, in A's place
+    assert set(brain.drives.links("one")) == {wait_a}
+    assert set(brain.drives.links("two")) == {wait_b}
+    assert (brain.graph.delay(wait_a), brain.timing.cells.learned_delay(wait_a)) == delay
+    # its run-up, 30 cm on from the wait before (its own, at B), is taught all the same
+    assert brain.runup_after["two"] == "two" and brain.runups["two"] == pytest.approx(30.0)
+    # a drive whose first lesson lands on another's stop is linked to it (nothing else to link)
+    brain.drives.add("three")
+    brain.drives.inhibit("three")
+    lesson("A", 40, "three")
+    assert set(brain.drives.links("three")) == {wait_a}
+    assert brain.graph.delay(wait_a) > delay[0]
