@@ -212,7 +212,9 @@ class Brain:
             self._settle_until = math.inf   # until the map recognises where the robot is
 
     def reward(self, drive: str) -> None:
-        """An external satisfaction of ``drive``: linked to the next transition performed."""
+        """An external satisfaction of ``drive``: linked to the next transition performed
+        (unless that is a wait already another drive's goal and ``drive`` has a goal of its
+        own: a repeated lesson in an aliased place teaches only the run-up)."""
         if drive not in self.drives:
             raise KeyError(f"unknown drive {drive!r}; known: {', '.join(self.drives.names)}")
         self._pending_rewards.append(drive)
