@@ -304,6 +304,8 @@ class Brain:
             self.state, self.entered_at, self._entry_pose = ev.winner, self.t, self.pi.pose
             self._entries[ev.winner] = (self.t, self.pi.pose)
             self._ctx_now, self._ctx_before = ev.winner, None
+            if self.kind(ev.winner) == StateKind.PLACE:   # a held stop's place may win at once
+                self.decide.passed_held_stop(ev.winner)
             self.decide.choose()
         elif ev.changed:
             self._on_event(ev.winner)

@@ -14,7 +14,9 @@ here use it (parameters in :class:`~hippo.brain_params.BrainParams`):
   in a row show to be too long (a detour in the lesson) is replaced;
 - re-anchoring after a lift: a robot carried in the middle of a task (a kidnap, a rescue) has
   no anchor; the first stop it passes without making it, because its drive is held, anchors
-  the next run-up where that stop was due (entering its place plus the map's delay of the stop).
+  the next run-up where that stop was due (entering its place plus the map's delay of the stop;
+  a place that already wins when the robot is put down, or when it re-localises, counts as
+  entered then). Until then soft recognition starts no approach (:mod:`hippo.soft_recognition`).
 """
 
 from __future__ import annotations

@@ -18,7 +18,8 @@ that stop as if it had entered ``C`` when
 
 and the map would choose that stop on entering ``C`` (its drive beats those of the moves out
 of ``C``), unless the robot's run since its last wait says the stop is not due here
-(:meth:`~hippo.runups.RunupRules._not_due`). Parameters in
+(:meth:`~hippo.runups.RunupRules._not_due`), and not after a lift that kept the held
+drives until the run-ups are re-anchored (:mod:`hippo.runups`). Parameters in
 :class:`~hippo.brain_params.BrainParams`.
 
 A companion binds the taught stop to a second place, the one that wins where the stop is
@@ -72,14 +73,19 @@ class SoftRecognition:
     def recognise_stop(self) -> None:
         """Approach a wanted stop whose place ``C`` is coactive, or whose alias was just
         entered (see the module docstring); not while the odometric stop of the run-up rules
-        (``_runup_due``) is due. An approach by an alias is timed from entering it."""
+        (``_runup_due``) is due, nor after a lift that kept the held drives (a kidnap, a
+        rescue) until a held stop the robot passes re-anchors the run-ups: with no anchor a
+        coactive place sets no bound, and one 15 cm before the checkpoint the robot was put
+        before made another checkpoint's stop there (tuning seeds 48 and 68). An approach by
+        an alias is timed from entering it."""
         b = self.b
         p = b.p
         # while moving from place to place: not standing (a teacher's block holds a robot that
         # means to move; a stop approached there waited for a stillness it already had, for
         # ever: a whole patrol, held-out seed 107) nor just starting off after a wait
         if (self.mode != Mode.MOVE or b.state is None or b.kind(b.state) != StateKind.PLACE
-                or self._runup_due() or p.coactive <= 0):
+                or self._runup_due() or p.coactive <= 0
+                or (self._reanchor and b.wait_ended_at is None)):
             return
         acts = b.layer.place_activity
         if acts.size == 0:

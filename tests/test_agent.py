@@ -321,6 +321,13 @@ def test_a_stop_is_recognised_softly_only_where_its_run_ups_say_it_is_due():
     assert not approaches("cp", 220.0)
     assert approaches("elsewhere", 5.0)              # not in the taught chain: no bound
     assert approaches(None, 0.0)                     # no anchor (after a lift): no bound
+    # but a robot carried with its held drives kept (a kidnap) trusts no soft recognition
+    # until a held stop it passes re-anchors the run-ups (tuning seeds 48 and 68: it stopped
+    # for checkpoint 1 by a coactive place 15 cm before checkpoint 3, the one it was put
+    # before); then the run-ups bound it as before
+    agent.decide.lifted_with_drives()
+    assert not approaches(None, 0.0)
+    assert approaches("other", 75.0)
 
 
 def test_a_place_that_wins_where_a_due_stop_is_made_becomes_its_companion(tmp_path):

@@ -485,6 +485,23 @@ def test_after_a_kidnap_the_held_stop_it_passes_anchors_the_run_ups_where_it_was
     assert not brain.decide._reanchor and brain.decide._due_anchor is None
 
 
+def test_a_held_stop_whose_place_wins_as_the_robot_is_put_down_anchors_the_run_ups():
+    # carried with its held drive kept and put down in A, the place of the stop it just made:
+    # A wins from the first tick, with no event into it, and still counts as passed (tuning
+    # seed 19: the held stop's place won as settling ended, and nothing re-anchored)
+    brain, run = taught()
+    a = brain.layer.find("place", 0)
+    delay = brain.graph.delay((a, brain.layer.find("still", context=a)))
+    brain.drives.inhibit("sound")
+    brain.decide._inhibited["sound"] = a
+    brain.lifted(keep_drives=True)
+    start = brain.odometer
+    run.ticks(round(delay / DT) + 5, "A", moving=True)
+    assert brain.state == a and brain.decide.mode != Mode.WAIT
+    assert brain.wait_ended_at == pytest.approx(start + delay / DT, abs=1.5)
+    assert not brain.decide._reanchor
+
+
 def test_only_a_wait_where_the_anchor_said_anchors_the_next_run_up():
     # two checkpoints a -> b -> a: b's run-up 50 cm after a's wait, a's 100 cm after b's
     brain = Brain(Stub(), drives={"a": DriveParams(), "b": DriveParams()},
