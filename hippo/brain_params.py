@@ -47,6 +47,16 @@ class BrainParams:
         ``turn_limit`` rad (about 100°: it would turn a moving robot around) has its drive
         activity multiplied by ``turn_discount`` when transitions compete (motor continuity
         against aliasing).
+    hold_heading: a robot moving from place to place does not take a drive-led move that
+        would turn it round (by more than ``turn_limit``): it holds its heading to the next
+        place (default False). A place aliased across the course can hold a move learned on
+        the far stretch: tuning seed 4 turned back along the north corridor on one and made
+        14 failures in the first 2 h of an 18-h deployment (0 with this rule; tuning seeds 0,
+        1, 5, 6, 9: 0, 0, 0, 0, 4 as without it), patrol seeds 0-79 1,357 against 1,355 of
+        1,360 passes,
+        place preference seeds 0-4 44 against 43 of 60 paths <= 1.5 x; but the kidnap 75
+        against 78 of 80, and other arenas, whose routes run corridors both ways, unmeasured:
+        not the default.
     min_heading_r: a move whose measured headings disagree (mean resultant length below this:
         made both ways, as out of a floor-colour zone that lies inside one place field) has no
         direction: the robot keeps its own heading, and no turn discount applies to it.
@@ -156,6 +166,7 @@ class BrainParams:
     stop_lead: float = 0.5
     turn_limit: float = 1.75
     turn_discount: float = 0.5
+    hold_heading: bool = False
     min_heading_r: float = 0.5
     cycle_visits: int = 3
     cycle_window: float = 60.0

@@ -229,8 +229,7 @@ class Decider(SoftRecognition, RunupRules):
             vals = np.array([self._activity(t) for t in out])
             if keep_heading or exclude_wait:
                 for i, t in enumerate(out):
-                    h = self._direction(t)
-                    if h is not None and abs(wrap_angle(h - b.pi.heading)) > b.p.turn_limit:
+                    if self._turns(t):
                         vals[i] *= b.p.turn_discount
             if b.p.own_stops_only:
                 # a stop is made for a drive that wants it: a stop whose wait serves no free,
@@ -249,6 +248,9 @@ class Decider(SoftRecognition, RunupRules):
             if tr not in out or vals[out.index(tr)] < vals.max():
                 tr = out[int(np.argmax(vals))] if vals.max() > 0 else \
                     out[int(b.rng.integers(len(out)))]
+            if b.p.hold_heading and keep_heading and not exclude_wait and self._turns(tr):
+                self.mode, self.current_since = Mode.MOVE, b.t   # hold the heading
+                return
         self.current, self.current_since = tr, b.t
         action = g.action(tr)
         if not action.is_wait:
@@ -264,6 +266,11 @@ class Decider(SoftRecognition, RunupRules):
     def _direction(self, tr: Transition) -> float | None:
         """Heading of move ``tr``, None if it has none (a robot keeps its own then)."""
         return self.b.graph.direction(tr, self.b.p.min_heading_r)
+
+    def _turns(self, tr: Transition) -> bool:
+        """Would move ``tr`` turn the robot round (``turn_limit``)?"""
+        h = self._direction(tr)
+        return h is not None and abs(wrap_angle(h - self.b.pi.heading)) > self.b.p.turn_limit
 
     def _stop_wanted(self, still: int) -> bool:
         """Is a drive linked to a wait out of stop ``still`` free and active?"""

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from hippo.brain import Brain, BrainParams, Tick
-from hippo.cognitive_map import DriveParams
+from hippo.cognitive_map import Action, DriveParams
 from hippo.perception.states import StateLayer, StateLayerParams
 from hippo.timing import NonOccurrence, SpectralTiming, TransitionCells, TransitionParams
 from hippo.types import Mode, Observation, StateKind
@@ -721,3 +721,30 @@ def test_a_lesson_repeated_in_another_checkpoints_place_teaches_only_its_run_up(
     lesson("A", 40, "three")
     assert set(brain.drives.links("three")) == {wait_a}
     assert brain.graph.delay(wait_a) > delay[0]
+
+
+@pytest.mark.parametrize("hold", [False, True])
+def test_hold_heading_keeps_a_moving_robot_from_turning_round(hold):
+    # the only drive-led move out of A points back the way the robot came (learned on the
+    # far stretch of an aliased place): with hold_heading the moving robot holds its heading
+    # to the next place; without it, it turns round (the turn discount does not matter when
+    # nothing else competes). After a wait (exclude_wait) the move is taken either way
+    brain, _ = make(hold_heading=hold)
+    brain.drives.add("cp")
+    layer, graph, decide = brain.layer, brain.graph, brain.decide
+    a, b = layer.recruit("place", 0), layer.recruit("place", 1)
+    still, moving = layer.recruit("still", None, b), layer.recruit("moving", None, b)
+    graph.add_transition(a, b, Action.move(math.pi, 20.0), 4.0)
+    graph.add_transition(b, still, Action.wait(), 3.0)
+    graph.add_transition(still, moving, Action.wait(), 10.0)
+    brain.drives.reward("cp", (still, moving))
+    brain.drives.set_level("cp", 1.0)
+    assert brain.pi.heading == 0.0                     # the robot runs east; the move west
+    brain.state, decide.mode, decide.heading = a, Mode.MOVE, 0.0
+    decide.choose()
+    if hold:
+        assert decide.mode == Mode.MOVE and decide.current is None and decide.heading == 0.0
+    else:
+        assert decide.current == (a, b) and decide.heading == pytest.approx(math.pi)
+    decide.choose(a, exclude_wait=True)                # moving on after a wait
+    assert decide.current == (a, b)
