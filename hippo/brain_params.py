@@ -53,10 +53,9 @@ class BrainParams:
         the far stretch: tuning seed 4 turned back along the north corridor on one and made
         14 failures in the first 2 h of an 18-h deployment (0 with this rule; tuning seeds 0,
         1, 5, 6, 9: 0, 0, 0, 0, 4 as without it), patrol seeds 0-79 1,357 against 1,355 of
-        1,360 passes,
-        place preference seeds 0-4 44 against 43 of 60 paths <= 1.5 x; but the kidnap 75
-        against 78 of 80, and other arenas, whose routes run corridors both ways, unmeasured:
-        not the default.
+        1,360 passes, place preference seeds 0-4 44 against 43 of 60 paths <= 1.5 x; but the
+        kidnap 75 against 78 of 80, and other arenas, whose routes run corridors both ways,
+        unmeasured: not the default.
     min_heading_r: a move whose measured headings disagree (mean resultant length below this:
         made both ways, as out of a floor-colour zone that lies inside one place field) has no
         direction: the robot keeps its own heading, and no turn discount applies to it.
