@@ -51,11 +51,11 @@ class BrainParams:
         would turn it round (by more than ``turn_limit``): it holds its heading to the next
         place (default False). A place aliased across the course can hold a move learned on
         the far stretch: tuning seed 4 turned back along the north corridor on one and made
-        14 failures in the first 2 h of an 18-h deployment (0 with this rule; tuning seeds 0,
-        1, 5, 6, 9: 0, 0, 0, 0, 4 as without it), patrol seeds 0-79 1,357 against 1,355 of
-        1,360 passes, place preference seeds 0-4 44 against 43 of 60 paths <= 1.5 x; but the
-        kidnap 75 against 78 of 80, and other arenas, whose routes run corridors both ways,
-        unmeasured: not the default.
+        14 failures in the first 2 h of an 18-h deployment. With this rule, 18-h deployments
+        on tuning seeds 0-9: 0, 0, 0, 0, 0, 0, 0, 0, 9, 4 failures (without: 0, 0, 0, 0, 14,
+        0, 0, 1, 0, 4); patrol seeds 0-79 1,357 against 1,355 of 1,360 passes; place
+        preference seeds 0-4 44 against 43 of 60 paths <= 1.5 x; but the kidnap 75 against
+        78 of 80 and seed 8's deployment 9 against 0: not the default.
     min_heading_r: a move whose measured headings disagree (mean resultant length below this:
         made both ways, as out of a floor-colour zone that lies inside one place field) has no
         direction: the robot keeps its own heading, and no turn discount applies to it.
