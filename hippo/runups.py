@@ -60,11 +60,16 @@ class RunupRules:
         held stop it passes re-anchors the run-ups (see the module docstring)."""
         self._reanchor, self._due_anchor = True, None
 
+    def reanchoring(self) -> bool:
+        """Carried with the held drives kept, and no anchor since (no wait, no held stop
+        passed): the run-ups bound nothing yet."""
+        return self._reanchor and self.b.wait_ended_at is None
+
     def passed_held_stop(self, place: int) -> None:
         """``place`` was just entered: if no anchor holds since a lift and a held drive's taught
         stop is bound to it, that stop is due after the map's delay of ``place -> still``."""
         b = self.b
-        if not self._reanchor or b.wait_ended_at is not None:
+        if not self.reanchoring():
             return
         for name in b.drives.names:
             if not b.drives.is_inhibited(name):
@@ -83,7 +88,7 @@ class RunupRules:
         if due is None or b.t < due[1]:
             return
         self._due_anchor = None
-        if self._reanchor and b.wait_ended_at is None and self.mode != Mode.WAIT:
+        if self.reanchoring() and self.mode != Mode.WAIT:
             b.wait_ended_at, b.last_wait_drive = b.odometer, due[0]
             self._reanchor = False
 

@@ -52,6 +52,7 @@ class SoftRecognition:
     _runup_due: Any  # the run-up rules' (:class:`~hippo.runups.RunupRules`)
     _not_due: Any    # the same
     _due: Any        # the same
+    reanchoring: Any  # the same
     current: Any
     current_since: float
     _approach_t0: float
@@ -85,7 +86,7 @@ class SoftRecognition:
         # ever: a whole patrol, held-out seed 107) nor just starting off after a wait
         if (self.mode != Mode.MOVE or b.state is None or b.kind(b.state) != StateKind.PLACE
                 or self._runup_due() or p.coactive <= 0
-                or (self._reanchor and b.wait_ended_at is None)):
+                or self.reanchoring()):
             return
         acts = b.layer.place_activity
         if acts.size == 0:
