@@ -58,8 +58,10 @@ class Route:
     def through(cls, arena: Any, points: Sequence[Sequence[float]], *, radius: float = 3.7,
                 clearance: float = 3.0) -> Route:
         """The closed route through ``points`` in order: the arena's shortest path (for a disc
-        of ``radius`` cm, keeping ``clearance`` cm more from walls where it can) from each point
-        to the next and from the last back to the first. A leg takes another way than the legs
+        of ``radius`` cm, keeping ``clearance`` cm more from walls where it can, with the graded
+        penalty of :meth:`hippo.sim.arena.Arena.shortest_path`: a corridor narrower than that
+        is run along its middle, not priced out for a detour) from each point to the next and
+        from the last back to the first. A leg takes another way than the legs
         before it where one exists (the shortest path on which cells within 10 cm of them cost
         3 times as much, if at most half of it runs within 15 cm of them): around a ring the
         route is a loop, not out along one side and back along it. Where two points are joined
@@ -69,11 +71,12 @@ class Route:
             raise ValueError(f"a route needs at least two points, got {len(pts)}")
         wps: list[tuple[float, float]] = []
         for a, b in pairwise([*pts, pts[0]]):
-            _, path = arena.shortest_path(a, b, radius, clearance=clearance)
+            _, path = arena.shortest_path(a, b, radius, clearance=clearance, graded=True)
             if not path:
                 raise ValueError(f"no path from {a} to {b} in arena {arena.name!r}")
             if wps:
-                _, other = arena.shortest_path(a, b, radius, clearance=clearance, avoid=wps)
+                _, other = arena.shortest_path(a, b, radius, clearance=clearance, avoid=wps,
+                                                graded=True)
                 old = np.asarray(wps)
                 shared = [np.hypot(*(old - q).T).min() < 15.0 for q in other[1:-1]]
                 if other and np.mean(shared or [1.0]) <= 0.5:

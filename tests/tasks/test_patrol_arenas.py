@@ -62,6 +62,40 @@ def test_shortest_path_keeps_off_what_it_is_told_to_avoid():
     assert min(x for x, _ in other[1:-1]) > 24.0 and max(x for x, _ in other) > 114.0
 
 
+def test_a_narrow_corridor_is_not_priced_out_for_a_long_detour():
+    # patrol-course's south corridor is 22 cm wide: no cell of it has the 8 cm of clearance a
+    # route asks for beyond the robot's radius; with a flat penalty of 3 there, the way from
+    # the east corridor to the south-west corner ran round the north (278 cm, not 166)
+    arena = arenas.get("patrol-course")
+    a, b = (137.0, 49.0), (11.0, 15.0)
+    n_flat, flat = arena.shortest_path(a, b, clearance=8.0)
+    n_graded, graded = arena.shortest_path(a, b, clearance=8.0, graded=True)
+    assert max(y for _, y in flat) > 90.0  # the old way: round the north
+    assert max(y for _, y in graded) < 50.0 and n_graded < 0.7 * n_flat
+    # where the floor is open both cost the same: the graded penalty is 1 where it is roomy
+    open_a, open_b = (40.0, 100.0), (110.0, 100.0)
+    assert arena.shortest_path(open_a, open_b, clearance=8.0, graded=True)[0] == \
+        pytest.approx(arena.shortest_path(open_a, open_b, clearance=8.0)[0], rel=0.05)
+
+
+def test_a_route_through_checkpoints_on_a_ring_runs_round_it_once():
+    # three checkpoints nobody chose on patrol-course (random_patrol seed 0, before the graded
+    # penalty): the route is one loop round the ring, not 1.5 rings with the east corridor
+    # run three times
+    cps = [(137.0, 49.0), (11.0, 15.0), (103.0, 109.0)]
+    arena = arenas.get("patrol-course")
+    r = patrol_route("patrol-course", cps)
+    legs = sum(arena.shortest_path(a, b, clearance=0.0)[0]
+               for a, b in zip(cps, [*cps[1:], cps[0]], strict=True))
+    assert r.length == pytest.approx(legs, rel=0.1)
+    # each checkpoint lies near one stretch of the route only: a pass by it is one pass
+    pts = np.array(r.sample(1.0))
+    s = np.arange(len(pts)) * r.length / len(pts)
+    for c in cps:
+        near = s[np.hypot(*(pts - c).T) < 20.0]
+        assert np.ptp(near) < 60.0 or np.ptp((near + r.length / 2) % r.length) < 60.0
+
+
 def test_checkpoints_inside_walls_are_refused():
     with pytest.raises(ValueError, match="cannot be reached"):
         check_patrol("goal-arena", [(85.0, 15.0), (70.0, 80.0)], [10.0, 10.0])
