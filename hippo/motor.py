@@ -49,6 +49,9 @@ class MotorParams:
     wall_tolerance: a move goes along the followed wall (the exploration's own motion, so the
         place cells see what they were trained on) while the move's heading is within this
         many radians of the robot's; beyond it the robot steers to the heading.
+    wall_side: the wall both followers keep to: -1 right (around a ring: counter-clockwise),
+        +1 left (clockwise). It must be the side the robot explored along: place cells learned
+        on one direction of travel along one wall code that motion, not its mirror.
     """
 
     speed: float = 5.08
@@ -57,6 +60,7 @@ class MotorParams:
     stall_time: float = 1.0
     unstick_time: float = 4.0
     wall_tolerance: float = 2.0
+    wall_side: int = -1
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -65,6 +69,8 @@ class MotorParams:
         check_positive("stall_time", self.stall_time, allow_zero=True)
         check_positive("unstick_time", self.unstick_time, allow_zero=True)
         check_positive("wall_tolerance", self.wall_tolerance)
+        if self.wall_side not in (-1, 1):
+            raise ValueError(f"wall_side must be -1 (right) or +1 (left), got {self.wall_side!r}")
         if not 0.0 <= self.explore_rho <= 1.0:
             raise ValueError(f"explore_rho must lie in [0, 1], got {self.explore_rho}")
 
@@ -98,8 +104,8 @@ class Motor:
         self.robot = robot or RobotParams()
         self.sensors = get_sensor_model(sensors)
         self.explorer = WallFollower(WallFollowerParams(rho=p.explore_rho), sensors=self.sensors,
-                                     robot=self.robot, rng=rng_explore)
-        self.steer = WallGuidedHeading(sensors=self.sensors, robot=self.robot,
+                                     robot=self.robot, rng=rng_explore, side=p.wall_side)
+        self.steer = WallGuidedHeading(sensors=self.sensors, robot=self.robot, side=p.wall_side,
                                        tolerance=p.wall_tolerance, speed=p.speed, rng=rng_steer)
         self.avoid = ObstacleAvoidance(sensors=self.sensors, robot=self.robot)
         self._stalled = 0

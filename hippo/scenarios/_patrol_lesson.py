@@ -23,7 +23,7 @@ from hippo.cli_args import (
 from hippo.cognitive_map import DriveParams, LocaliserParams, PlannerParams
 from hippo.sim import World, arenas
 from hippo.snapshot import load_snapshot, save_snapshot
-from hippo.tasks import PLACE_STATES, Log, Session, explore, make_places, stops
+from hippo.tasks import PLACE_STATES, Log, Session, explore, make_places, stops, wall_side
 from hippo.tasks.patrol import (
     ARENA_CHECKPOINTS,
     HIREL_WAITS,
@@ -174,8 +174,10 @@ def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
     arena = arenas.get(args.arena)
     world = World(arena, sensors="ir8", seed=seed)
     log = Log(n_drives=len(checkpoints))
+    route = patrol_route(args.arena, checkpoints)
+    side = wall_side(route, arena, seed)
     # exploration: place cells only (HIREL learns the map on the leash)
-    tour = explore(world, round(args.explore_min * 60 / world.dt), 0.0, seed, log)
+    tour = explore(world, round(args.explore_min * 60 / world.dt), 0.0, seed, log, side=side)
     places = make_places(args.place_cells, arena, tour.sensors, units, seed, args.places)
     places.prime(tour.sensors[-500:])  # the robot's reservoir ran all along: go on from there
     drive = DriveParams(epsilon=0.01, learning_rate=0.5)
@@ -184,11 +186,12 @@ def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
     # stop is chosen from the place code's memory of where it was carried from (kidnap,
     # tuning seeds 0-9: 9/10 with it, 6/10 with the fixed 6 s settling)
     params = AgentParams(states=PLACE_STATES, relocalise=LocaliserParams(),
-                         planner=PlannerParams(w=0.9, noise=0.0, exploration_threshold=0.05))
+                         planner=PlannerParams(w=0.9, noise=0.0, exploration_threshold=0.05),
+                         wall_side=side)
     agent = Agent(places, drives=dict.fromkeys(names, drive), params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)
     s = Session(world, agent, log, obs=tour[-1], phase=PatrolPhase.LEASH)
-    course = PatrolCourse(s, patrol_route(args.arena, checkpoints), checkpoints, names)
+    course = PatrolCourse(s, route, checkpoints, names)
     reproduced = course.teach(list(args.waits))
     taught = stops(s.log.arrays(), checkpoints, world.robot.moving_threshold,
                    taught_phase=PatrolPhase.CHECKPOINTS)

@@ -22,10 +22,13 @@ default; ``two-rooms``, ``goal-arena``, ``maze``), ``--checkpoints`` two to four
 (each arena has default ones) and ``--waits`` one wait per checkpoint. The leash route runs
 through the checkpoints in order along the arena's shortest paths and back to the first (on
 ``patrol-course`` with its default checkpoints: the corridor loop); where a corridor is the
-only way between two checkpoints the route runs along it both ways. Laps and passes are
-measured by progress along that route (``hippo.tasks.LapCounter``, ``route_passes``), and
-each phase that counts laps ends at the point of the route farthest from every checkpoint,
-so that no stop straddles the end of a phase.
+only way between two checkpoints the route runs along it both ways, and a leg goes round a
+third checkpoint where a way round exists (a loop round a ring). The robot explores along
+the wall that takes it the way the route runs, and follows that wall on its moves
+(``hippo.tasks.wall_side``; ``route_winding`` and ``wall_side`` in ``metrics.json``). Laps
+and passes are measured by progress along that route (``hippo.tasks.LapCounter``,
+``route_passes``), and each phase that counts laps ends at the point of the route farthest
+from every checkpoint, so that no stop straddles the end of a phase.
 
 Metrics. Each pass of the robot by a checkpoint during the patrol (its progress along the
 route within 30 cm of the checkpoint's, once per lap) is a chance to stop there:
@@ -113,6 +116,7 @@ def run(args: argparse.Namespace) -> dict:
     metrics = {
         "place_cells": args.place_cells, "seed": seed, "arena": args.arena,
         "checkpoints_cm": [list(c) for c in checkpoints], "route_cm": loop_route.length,
+        "route_winding": loop_route.winding, "wall_side": int(agent.p.wall_side),
         "waits_s": waits, "loops": loops,
         "quick": quick, "place_units": places.n_units,
         "loaded_from": str(args.load) if getattr(args, "load", None) is not None else None,

@@ -157,7 +157,8 @@ class Arena:
     def shortest_path(self, start: Point, goal: Rect | Point, radius: float = 3.7,
                       cell: float = 2.0, clearance: float = 3.0, *, thin: bool = True,
                       avoid: Sequence[Point] = (), avoid_radius: float = 10.0,
-                      graded: bool = False) -> tuple[float, list[Point]]:
+                      graded: bool = False, block: Sequence[Point] = (),
+                      block_radius: float = 25.0) -> tuple[float, list[Point]]:
         """Shortest collision-free path from ``start`` to a point or rectangle.
 
         Dijkstra on an 8-connected grid of cells where a disc of ``radius + clearance`` fits
@@ -173,8 +174,16 @@ class Arena:
         ``2 (radius + clearance)`` then costs little more than open floor, so a narrow
         corridor is not priced out for a long detour (on ``patrol-course``'s 22 cm south
         corridor: 1.2 instead of 3), while hugging a wall still costs 3.
+
+        ``block``: points the path must keep ``block_radius`` cm from (each on its own, not
+        joined): cells nearer to one are not free.
         """
         xs, ys, free = self.free_grid(radius, cell)
+        if len(block):
+            bl = np.asarray(block, float).reshape(-1, 2)
+            gap2 = (xs[:, None, None] - bl[None, None, :, 0]) ** 2 \
+                + (ys[None, :, None] - bl[None, None, :, 1]) ** 2
+            free = free & (gap2.min(axis=2) >= block_radius**2)
         _, _, roomy = self.free_grid(radius + clearance, cell)
         nx, ny = free.shape
         if graded and clearance > 0:

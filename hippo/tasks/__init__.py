@@ -3,9 +3,9 @@
 - :class:`Session` (``session.py``) — an agent in a world with its teacher and its log; runs
   the closed loop (``run``), walks the robot on the leash (``lead``), holds it (``block``),
   picks it up and puts it down (``put``), writes ``run.npz`` (``save``).
-- :func:`explore`, :class:`Tour`, :func:`make_places`, :func:`learn_map`, ``PLACE_STATES``
-  (``explore.py``) — the robot's own tour, the place cells fitted on it, the map learned
-  from it.
+- :func:`explore`, :class:`Tour`, :func:`make_places`, :func:`learn_map`, :func:`wall_side`,
+  ``PLACE_STATES`` (``explore.py``) — the robot's own tour, the place cells fitted on it, the
+  map learned from it, the wall to explore along for a route.
 - :class:`Experimenter` (``teaching.py``) — the reward sound after a stop in a zone.
 - :class:`Route`, :class:`LapCounter`, :class:`AngleLaps`, :func:`progress_along`,
   :func:`route_passes`, :func:`passes`, :func:`stops` (``routes.py``) — routes through an
@@ -17,10 +17,18 @@
 - :class:`Log`, :func:`event_arrays`, :func:`enum_names` (``log.py``) — the per-tick log and
   its files.
 
-A task is a short phase script on these (see ``scenarios/patrol_square.py``).
+A task is a short phase script on these (see ``scenarios/patrol_square.py`` in the repository).
 """
 
-from hippo.tasks.explore import PAUSE_RATE, PLACE_STATES, Tour, explore, learn_map, make_places
+from hippo.tasks.explore import (
+    PAUSE_RATE,
+    PLACE_STATES,
+    Tour,
+    explore,
+    learn_map,
+    make_places,
+    wall_side,
+)
 from hippo.tasks.log import Log, enum_names, event_arrays
 from hippo.tasks.patrol import (
     ARENA_CHECKPOINTS,
@@ -50,5 +58,5 @@ __all__ = [
     "Experimenter", "LapCounter", "Log", "PatrolCourse", "PatrolPhase", "Route", "Session",
     "Tour", "check_patrol", "enum_names", "event_arrays", "explore", "lead_from", "learn_map",
     "make_places", "pass_report", "passes", "patrol_route", "progress_along", "random_patrol",
-    "route_passes", "stops",
+    "route_passes", "stops", "wall_side",
 ]

@@ -5,6 +5,8 @@
 - :func:`make_places` — the place-cell source fitted on a tour: RC-SFA-ICA read out by
   radial-basis prototypes (learned, the default) or Gaussian fields (ground truth).
 - :func:`learn_map` — replay a tour through an agent: states, timed transitions, the map.
+- :func:`wall_side` — the wall to explore along for a task on a route: the one that takes the
+  robot round the route the way it runs.
 - :data:`PLACE_STATES` — state-layer settings for place activities in [0, 1].
 """
 
@@ -25,9 +27,11 @@ from hippo.sim.arena import Arena
 from hippo.sim.controllers import WallFollower, WallFollowerParams
 from hippo.sim.world import World
 from hippo.tasks.log import Log
+from hippo.tasks.routes import LapCounter, Route
 from hippo.types import GroundTruth, Observation
 
-__all__ = ["PAUSE_RATE", "PLACE_STATES", "Tour", "explore", "learn_map", "make_places"]
+__all__ = ["PAUSE_RATE", "PLACE_STATES", "Tour", "explore", "learn_map", "make_places",
+           "wall_side"]
 
 #: probability per exploration tick of a pause (2-30 s): about one pause a minute
 PAUSE_RATE = 0.003
@@ -59,16 +63,18 @@ class Tour:
 
 
 def explore(world: World, ticks: int, rho: float, seed: int, log: Log | None = None,
-            desc: str = "exploration", pause_rate: float = PAUSE_RATE, phase: int = 0) -> Tour:
+            desc: str = "exploration", pause_rate: float = PAUSE_RATE, phase: int = 0,
+            side: int = -1) -> Tour:
     """Drive the robot with the wall follower, pausing now and then; return the :class:`Tour`.
 
     With probability ``pause_rate`` per tick the robot stands still for 2-30 s (uniform). A
     robot that will wait at goals and checkpoints must have stood still while it learned its
     place cells: the slow features then treat a stop as part of the place, not as a new
     input (without pauses, a wait left the learned places off for the next minute).
+    ``side``: the wall followed first (-1 right, +1 left; ``rho`` switches it at random).
     Each tick is logged in ``log`` (no agent yet) under ``phase``."""
     ctrl = WallFollower(WallFollowerParams(rho=rho), sensors=world.sensors, robot=world.robot,
-                        rng=Seeds(seed).generator("exploration"))
+                        rng=Seeds(seed).generator("exploration"), side=side)
     rng = Seeds(seed).generator("pauses")
     obs = world.observe()
     tour = Tour()
@@ -131,3 +137,32 @@ def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: 
         protos = PlacePrototypes(PrototypeParams(n_prototypes=n_places, seed=seed)).fit(Y)
     model.reset_state()
     return LearnedPlaceCells(model, protos)
+
+
+def wall_side(route: Route, arena: Arena, seed: int = 0, probe_s: float = 600.0) -> int:
+    """The wall (-1 right, +1 left) a robot that will run ``route`` explores along, and
+    follows on its moves (:attr:`hippo.motor.MotorParams.wall_side`).
+
+    Place cells learned on one direction of travel along one wall code that motion; the other
+    direction, along another wall, is input they never saw (patrol-course, clockwise routes
+    through random checkpoints, tuning seeds 0, 5 and 7: the robot explored along the right
+    wall, counter-clockwise, and ran its patrol backwards). Which way a wall follower goes
+    round depends on the wall it finds (the outer wall of ``patrol-course``, the inner ring of
+    ``goal-arena``), so the experimenter tries both: ``probe_s`` s of :func:`explore` from the
+    arena's start in a world of its own (seeded by ``seed``) per side, and the side whose tour
+    goes farther round the route its way wins. A route that encloses little
+    (:attr:`Route.winding` 0: out and back) is run both ways; it keeps the right wall, as
+    does a route neither side goes round its way (ties too)."""
+    if route.winding == 0:
+        return -1
+    laps = {}
+    for side in (-1, 1):
+        world = World(arena, seed=seed)
+        lap = LapCounter(route)
+        lap.update(*world.truth.pose[:2])
+        tour = explore(world, round(probe_s / world.dt), 0.0, seed, pause_rate=0.0,
+                       desc=f"probing the {'left' if side > 0 else 'right'} wall", side=side)
+        for truth in tour.truths:
+            lap.update(*truth.pose[:2])
+        laps[side] = lap.turns
+    return 1 if laps[1] > max(laps[-1], 0.0) else -1

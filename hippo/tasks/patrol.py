@@ -114,7 +114,7 @@ def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
 
 
 def random_patrol(arena_name: str, n: int, seed: int, *, waits: tuple[float, float] = (8.0, 30.0),
-                  clearance: float = 10.0, tries: int = 200
+                  clearance: float = 10.0, tries: int = 2000
                   ) -> tuple[list[tuple[float, float]], list[float]]:
     """``n`` checkpoints and their waits nobody chose: points drawn at random (generator
     ``seed``) on the floor the robot can reach (``clearance`` cm from every wall, on a 2 cm

@@ -56,7 +56,7 @@ class Route:
 
     @classmethod
     def through(cls, arena: Any, points: Sequence[Sequence[float]], *, radius: float = 3.7,
-                clearance: float = 3.0) -> Route:
+                clearance: float = 3.0, keep_off: float = 35.0, detour: float = 4.0) -> Route:
         """The closed route through ``points`` in order: the arena's shortest path (for a disc
         of ``radius`` cm, keeping ``clearance`` cm more from walls where it can, with the graded
         penalty of :meth:`hippo.sim.arena.Arena.shortest_path`: a corridor narrower than that
@@ -65,18 +65,33 @@ class Route:
         before it where one exists (the shortest path on which cells within 10 cm of them cost
         3 times as much, if at most half of it runs within 15 cm of them): around a ring the
         route is a loop, not out along one side and back along it. Where two points are joined
-        by one corridor only, the route runs along it both ways."""
+        by one corridor only, the route runs along it both ways.
+
+        A leg also keeps ``keep_off`` cm from the other points where a way round them is at
+        most ``detour`` times as long as its shortest path: a robot led from one checkpoint to
+        the next does not pass a third on the way, which it would be taught to pass without
+        its stop, and whose passes along the route would then be counted on another stretch
+        than the one it is passed on (patrol-course, checkpoints drawn by
+        :func:`hippo.tasks.random_patrol`: three of them all in its north-east corner made a
+        route out and back along one corridor; with this, a loop round the ring)."""
         pts = [tuple(map(float, p)) for p in points]
         if len(pts) < 2:
             raise ValueError(f"a route needs at least two points, got {len(pts)}")
         wps: list[tuple[float, float]] = []
         for a, b in pairwise([*pts, pts[0]]):
-            _, path = arena.shortest_path(a, b, radius, clearance=clearance, graded=True)
+            length, path = arena.shortest_path(a, b, radius, clearance=clearance, graded=True)
             if not path:
                 raise ValueError(f"no path from {a} to {b} in arena {arena.name!r}")
+            others = [p for p in pts if math.dist(p, a) > keep_off and math.dist(p, b) > keep_off]
+            off: dict[str, Any] = {}
+            if others:
+                around, way = arena.shortest_path(a, b, radius, clearance=clearance, graded=True,
+                                                  block=others, block_radius=keep_off)
+                if way and around <= detour * length:
+                    path, off = way, {"block": others, "block_radius": keep_off}
             if wps:
                 _, other = arena.shortest_path(a, b, radius, clearance=clearance, avoid=wps,
-                                                graded=True)
+                                                graded=True, **off)
                 old = np.asarray(wps)
                 shared = [np.hypot(*(old - q).T).min() < 15.0 for q in other[1:-1]]
                 if other and np.mean(shared or [1.0]) <= 0.5:
@@ -167,6 +182,24 @@ class Route:
         n = len(wp)
         return [wp[(i + k) % n] for k in range(1, (j - i) % n + 1)] + [
             (float(goal[0]), float(goal[1]))]
+
+    @property
+    def signed_area(self) -> float:
+        """The area (cm²) the closed route encloses, counted positive where it runs
+        counter-clockwise (the shoelace formula; an out-and-back stretch adds nothing)."""
+        x, y = self.points[:, 0], self.points[:, 1]
+        return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+
+    @property
+    def winding(self) -> int:
+        """+1 if the route runs counter-clockwise round what it encloses, -1 clockwise, 0 if it
+        encloses little: less than a quarter of the square with its length as perimeter (a
+        shuttle along a corridor, out and back, encloses a few %; a loop round the ring of
+        patrol-course about 100 %, an equilateral triangle 77 %)."""
+        a = self.signed_area
+        if abs(a) < 0.25 * (self.length / 4.0) ** 2:
+            return 0
+        return 1 if a > 0 else -1
 
     def loop_from(self, pose: Sequence[float]) -> list[tuple[float, float]]:
         """One whole loop from the waypoint nearest ``pose`` (or the next one, if that one is

@@ -220,3 +220,17 @@ def test_a_lap_counter_says_the_robot_reached_a_point_only_at_or_past_it():
     assert not laps.reached(85.0, 0.0, (60.0, 0.0), radius=20.0)   # past it and out of reach
     with pytest.raises(ValueError, match="radius"):
         laps.reached(60.0, 0.0, (60.0, 0.0), radius=0.0)
+
+
+def test_winding_tells_a_loop_round_from_a_shuttle():
+    # the shoelace area of a 100 cm square is 10,000 cm^2, positive counter-clockwise
+    ccw, cw = Route(SQUARE), Route(SQUARE[::-1])
+    assert ccw.signed_area == pytest.approx(10_000.0)
+    assert cw.signed_area == pytest.approx(-10_000.0)
+    assert (ccw.winding, cw.winding) == (1, -1)
+    # out along a corridor and back, a little off the line each way: it encloses ~2 %
+    shuttle = Route([(0, 0), (100, 0), (200, 2), (100, 3), (0, 2)])
+    assert abs(shuttle.signed_area) < 0.05 * (shuttle.length / 4) ** 2
+    assert shuttle.winding == 0
+    # the loop of patrol-course runs counter-clockwise round its inner block
+    assert Route(arenas.loop_waypoints()).winding == 1
