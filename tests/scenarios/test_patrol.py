@@ -73,3 +73,16 @@ def test_a_saved_lesson_patrols_bit_for_bit_like_the_run_that_saved_it(tmp_path)
     with pytest.raises(SystemExit):   # not a patrol lesson
         run_scenario("patrol", ["--quick", "--load", str(tmp_path / "a"),
                                 "--out", str(tmp_path / "d")])
+
+
+def test_the_summary_names_a_route_out_and_back_as_a_known_limitation():
+    from hippo.scenarios.patrol import route_note
+    from hippo.sim import arenas
+    from hippo.tasks import Route, patrol_route
+
+    assert route_note(Route(arenas.loop_waypoints())) == ""
+    out_and_back = Route.through(arenas.get("two-rooms"), [(15.0, 65.0), (100.0, 40.0)])
+    assert out_and_back.winding == 0
+    assert "out and back" in route_note(out_and_back)
+    assert route_note(patrol_route("goal-arena", [(85.0, 15.0), (132.0, 76.0),
+                                                  (45.0, 136.0)])) == ""
