@@ -97,6 +97,8 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["run", "patrol", "--checkpoints", "15,65;90,20", "--arena", "two-rooms", "--waits",
       "5,6,7"], "--waits"),
     (["run", "patrol", "--explore-min", "-1"], "--explore-min"),
+    (["run", "patrol", "--route", "scenic"], "--route"),
+    (["run", "patrol", "--route", "tour", "--checkpoints", "125,60;15,60"], "--checkpoints"),
     # timing demo
     (["run", "timing-demo", "--delay", "0"], "--delay"),
     (["run", "timing-demo", "--pairings", "0"], "--pairings"),

@@ -27,6 +27,7 @@ from hippo.tasks import PLACE_STATES, Log, Session, explore, make_places, stops,
 from hippo.tasks.patrol import (
     ARENA_CHECKPOINTS,
     HIREL_WAITS,
+    ROUTE_KINDS,
     PatrolCourse,
     PatrolPhase,
     check_patrol,
@@ -44,6 +45,11 @@ def add_course_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--waits", type=numbers((2, 4), 0.5, 120.0, unit="s"), default=None,
                         help="one wait per checkpoint in s, comma-separated (default: HIREL's "
                              "24.1,19.1,11.6 (and 16 for a fourth))")
+    parser.add_argument("--route", choices=list(ROUTE_KINDS), default="auto",
+                        help="the leash route: the arena's shortest paths through the "
+                             "checkpoints, the loop the exploring wall follower runs round "
+                             "the arena (tour), or auto: the shortest paths where they make a "
+                             "loop, else the tour where it passes every checkpoint")
     add_place_cells(parser)
     parser.add_argument("--explore-min", type=number(5.0, 600.0), default=30.0,
                         help="exploration, simulated minutes")
@@ -82,6 +88,8 @@ def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser)
         for key in _META:
             setattr(args, key, meta[key])
         args.checkpoints = [tuple(c) for c in meta["checkpoints"]]
+        # (a robot saved before routes had kinds was taught on the shortest paths)
+        args.route = meta.get("route", "shortest")
         return
     if getattr(args, "arena", None) is None:
         args.arena = "patrol-course"
@@ -90,7 +98,7 @@ def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser)
     if getattr(args, "waits", None) is None:
         args.waits = HIREL_WAITS[:len(cps)]
     try:
-        check_patrol(args.arena, cps, args.waits)
+        check_patrol(args.arena, cps, args.waits, getattr(args, "route", "auto"))
     except ValueError as e:
         which = "--waits" if "waits" in str(e).split(" for ")[0] else "--checkpoints"
         parser.error(f"argument {which}: {e}")
@@ -122,6 +130,11 @@ def _plain(value: Any) -> Any:
         else value
 
 
+def meta_route(meta: dict) -> str:
+    """The route kind a saved lesson was taught on (before kinds: the shortest paths)."""
+    return str(meta.get("route", "shortest"))
+
+
 def load_lesson(folder: str | Path) -> dict:
     """A snapshot written by ``--save`` of a patrol scenario, checked."""
     state = load_snapshot(folder, dict)
@@ -144,6 +157,7 @@ def save_lesson(folder: str | Path, lesson: Lesson, args: argparse.Namespace) ->
     observation, the lap counter and what the lesson was."""
     s = lesson.session
     meta = {k: _plain(getattr(args, k)) for k in _META}
+    meta["route"] = getattr(args, "route", "auto")
     meta.update(seed=int(args.seed), units=int(lesson.agent.places.n_units),
                 reproduced=float(lesson.reproduced), taught_stops=lesson.taught_stops)
     s.world.detach(s.teacher)
@@ -166,7 +180,8 @@ def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
     if loaded is not None:
         s = Session(loaded["world"], loaded["agent"], Log(n_drives=len(checkpoints)),
                     obs=loaded["obs"], phase=PatrolPhase.CHECKPOINTS)
-        course = PatrolCourse(s, patrol_route(args.arena, checkpoints), checkpoints, names)
+        course = PatrolCourse(s, patrol_route(args.arena, checkpoints,
+                                              meta_route(loaded["meta"])), checkpoints, names)
         course.loop = loaded["loop"]
         meta = loaded["meta"]
         return Lesson(s.world, s.agent, s, course, float(meta["reproduced"]),
@@ -174,7 +189,7 @@ def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
     arena = arenas.get(args.arena)
     world = World(arena, sensors="ir8", seed=seed)
     log = Log(n_drives=len(checkpoints))
-    route = patrol_route(args.arena, checkpoints)
+    route = patrol_route(args.arena, checkpoints, getattr(args, "route", "auto"))
     side = wall_side(route, arena, seed)
     # exploration: place cells only (HIREL learns the map on the leash)
     tour = explore(world, round(args.explore_min * 60 / world.dt), 0.0, seed, log, side=side)

@@ -66,7 +66,8 @@ def _meta(args: argparse.Namespace, hours: float, units: int) -> dict:
             "checkpoints": [list(map(float, c)) for c in args.checkpoints],
             "waits": [float(w) for w in args.waits], "place_cells": args.place_cells,
             "explore_min": float(args.explore_min), "units": int(units),
-            "places": int(args.places), "hours": float(hours),
+            "places": int(args.places), "route": getattr(args, "route", "auto"),
+            "hours": float(hours),
             "segment_min": float(args.segment_min), "quick": bool(args.quick)}
 
 
@@ -99,7 +100,8 @@ def run(args: argparse.Namespace) -> dict:
         s = Session(state["world"], state["agent"], Log(n_drives=len(args.checkpoints)),
                     obs=state["obs"])
         s.world.detach(s.teacher)
-        course = PatrolCourse(s, patrol_route(args.arena, args.checkpoints),
+        course = PatrolCourse(s, patrol_route(args.arena, args.checkpoints,
+                                              getattr(args, "route", "auto")),
                               args.checkpoints, [f"checkpoint-{k}" for k in
                                                  range(1, len(args.checkpoints) + 1)])
         course.loop = state["loop"]

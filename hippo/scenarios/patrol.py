@@ -23,7 +23,10 @@ default; ``two-rooms``, ``goal-arena``, ``maze``), ``--checkpoints`` two to four
 through the checkpoints in order along the arena's shortest paths and back to the first (on
 ``patrol-course`` with its default checkpoints: the corridor loop); where a corridor is the
 only way between two checkpoints the route runs along it both ways, and a leg goes round a
-third checkpoint where a way round exists (a loop round a ring). The robot explores along
+third checkpoint where a way round exists (a loop round a ring). Where those paths make no
+loop, ``--route auto`` (the default) takes the loop the exploring wall follower runs round
+the arena instead, if it passes every checkpoint (``two-rooms``: ``hippo.tasks.wall_tour``;
+``--route shortest`` or ``tour`` choose). The robot explores along
 the wall that takes it the way the route runs, and follows that wall on its moves
 (``hippo.tasks.wall_side``; ``route_winding`` and ``wall_side`` in ``metrics.json``). Laps
 and passes are measured by progress along that route (``hippo.tasks.LapCounter``,
@@ -55,7 +58,8 @@ from hippo.scenarios._common import prepare_out, write_metrics
 from hippo.scenarios._patrol_lesson import add_course_arguments, check_course_args, teach_patrol
 from hippo.sim import arenas
 from hippo.tasks import Route, stops
-from hippo.tasks.patrol import PatrolPhase, pass_report
+from hippo.tasks.explore import arena_tour
+from hippo.tasks.patrol import ARENA_CHECKPOINTS, PatrolPhase, pass_report
 
 Phase = PatrolPhase
 
@@ -69,10 +73,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 check_args = check_course_args
 
 
-def route_note(route: Route) -> str:
+def route_note(route: Route, arena: str | None = None) -> str:
     """What the summary says about a route the patrol is known not to hold on: one that runs
-    out and back (:attr:`Route.winding` 0), else nothing."""
-    if route.winding != 0:
+    out and back (:attr:`Route.winding` 0) and is not the wall tour of ``arena`` (a tree's
+    tour runs every corridor both ways too, along the line the robot explored), else
+    nothing."""
+    if route.winding != 0 or (arena is not None and route is arena_tour(arena)):
         return ""
     return ("\nnote: this route runs out and back (it encloses little: Route.winding 0); the "
             "robot does not reproduce such routes yet (a known limitation: the patrol "
@@ -126,6 +132,9 @@ def run(args: argparse.Namespace) -> dict:
     metrics = {
         "place_cells": args.place_cells, "seed": seed, "arena": args.arena,
         "checkpoints_cm": [list(c) for c in checkpoints], "route_cm": loop_route.length,
+        "route_kind": ("tour" if loop_route is arena_tour(args.arena) else "course"
+                       if checkpoints == ARENA_CHECKPOINTS.get(args.arena) and
+                       args.arena == "patrol-course" else "shortest"),
         "route_winding": loop_route.winding, "wall_side": int(agent.p.wall_side),
         "waits_s": waits, "loops": loops,
         "quick": quick, "place_units": places.n_units,
@@ -158,7 +167,7 @@ def run(args: argparse.Namespace) -> dict:
         f"{r['checkpoint']}: learned {r['learned_wait_s']:.1f} s, reproduced "
         + (f"{r['mean_s']:.1f} ± {r['sd_s']:.2f} s" if r["mean_s"] is not None else "none")
         for r in rows if r["learned_wait_s"] is not None)
-    shuttle = route_note(loop_route)
+    shuttle = route_note(loop_route, args.arena)
     write_metrics(out, metrics, summary=(
         f"patrol ({args.arena}, {args.place_cells} place cells): stopped at "
         f"{metrics['checkpoint_stops_made']} of {metrics['checkpoint_stops_expected']} "

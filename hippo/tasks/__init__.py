@@ -4,8 +4,9 @@
   the closed loop (``run``), walks the robot on the leash (``lead``), holds it (``block``),
   picks it up and puts it down (``put``), writes ``run.npz`` (``save``).
 - :func:`explore`, :class:`Tour`, :func:`make_places`, :func:`learn_map`, :func:`wall_side`,
-  ``PLACE_STATES`` (``explore.py``) — the robot's own tour, the place cells fitted on it, the
-  map learned from it, the wall to explore along for a route.
+  :func:`wall_tour`, ``PLACE_STATES`` (``explore.py``) — the robot's own tour, the place
+  cells fitted on it, the map learned from it, the wall to explore along for a route, the
+  loop the exploring wall follower runs as a route.
 - :class:`Experimenter` (``teaching.py``) — the reward sound after a stop in a zone.
 - :class:`Route`, :class:`LapCounter`, :class:`AngleLaps`, :func:`progress_along`,
   :func:`route_passes`, :func:`passes`, :func:`stops` (``routes.py``) — routes through an
@@ -28,6 +29,7 @@ from hippo.tasks.explore import (
     learn_map,
     make_places,
     wall_side,
+    wall_tour,
 )
 from hippo.tasks.log import Log, enum_names, event_arrays
 from hippo.tasks.patrol import (
@@ -58,5 +60,5 @@ __all__ = [
     "Experimenter", "LapCounter", "Log", "PatrolCourse", "PatrolPhase", "Route", "Session",
     "Tour", "check_patrol", "enum_names", "event_arrays", "explore", "lead_from", "learn_map",
     "make_places", "pass_report", "passes", "patrol_route", "progress_along", "random_patrol",
-    "route_passes", "stops", "wall_side",
+    "route_passes", "stops", "wall_side", "wall_tour",
 ]

@@ -7,11 +7,13 @@
 - :func:`learn_map` — replay a tour through an agent: states, timed transitions, the map.
 - :func:`wall_side` — the wall to explore along for a task on a route: the one that takes the
   robot round the route the way it runs.
+- :func:`wall_tour` — the loop the exploring wall follower runs round an arena, as a route.
 - :data:`PLACE_STATES` — state-layer settings for place activities in [0, 1].
 """
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -23,6 +25,7 @@ from hippo.perception.states import StateLayerParams
 from hippo.places import GroundTruthPlaceCells, LearnedPlaceCells, PlaceSource
 from hippo.progress import Progress, working
 from hippo.seeds import Seeds
+from hippo.sim import arenas
 from hippo.sim.arena import Arena
 from hippo.sim.controllers import WallFollower, WallFollowerParams
 from hippo.sim.world import World
@@ -30,8 +33,8 @@ from hippo.tasks.log import Log
 from hippo.tasks.routes import LapCounter, Route
 from hippo.types import GroundTruth, Observation
 
-__all__ = ["PAUSE_RATE", "PLACE_STATES", "Tour", "explore", "learn_map", "make_places",
-           "wall_side"]
+__all__ = ["PAUSE_RATE", "PLACE_STATES", "Tour", "arena_tour", "explore", "learn_map",
+           "make_places", "wall_side", "wall_tour"]
 
 #: probability per exploration tick of a pause (2-30 s): about one pause a minute
 PAUSE_RATE = 0.003
@@ -166,3 +169,39 @@ def wall_side(route: Route, arena: Arena, seed: int = 0, probe_s: float = 600.0)
             lap.update(*truth.pose[:2])
         laps[side] = lap.turns
     return 1 if laps[1] > max(laps[-1], 0.0) else -1
+
+
+def wall_tour(arena: Arena, side: int = -1, *, seed: int = 0, max_s: float = 1500.0,
+              settle_s: float = 30.0, spacing: float = 3.0) -> Route | None:
+    """The loop the exploring wall follower (``side``: -1 right, +1 left) runs round ``arena``,
+    as a closed :class:`Route` with a point every ``spacing`` cm; None if the follower has not
+    come back to where it was ``settle_s`` s after the start (within 4 cm, facing the same way)
+    within ``max_s`` s.
+
+    It is the line the robot learns its place cells on (:func:`explore`): a task along it
+    stays on what they saw. In a tree of rooms (``two-rooms``) the shortest paths between
+    checkpoints run out and back through the same doorway and across rooms the exploration
+    never crossed; the tour is one loop round every wall, each doorway once each way."""
+    world = World(arena, seed=seed)
+    tour = explore(world, round(max_s / world.dt), 0.0, seed, pause_rate=0.0, side=side,
+                   desc="wall tour")
+    pose = np.array([t.pose for t in tour.truths])
+    xy = pose[:, :2]
+    run = np.r_[0.0, np.cumsum(np.hypot(*np.diff(xy, axis=0).T))]
+    i0 = min(round(settle_s / world.dt), len(xy) - 1)
+    back = np.flatnonzero((run - run[i0] > 100.0) & (np.hypot(*(xy - xy[i0]).T) < 4.0)
+                          & (np.cos(pose[:, 2] - pose[i0, 2]) > 0.8))
+    if not back.size:
+        return None
+    j = int(back[0])
+    along = run[i0:j + 1] - run[i0]
+    grid = np.arange(0.0, along[-1], spacing)
+    pts = np.column_stack([np.interp(grid, along, xy[i0:j + 1, k]) for k in (0, 1)])
+    return Route(pts, closed=True)
+
+
+@functools.lru_cache(maxsize=16)
+def arena_tour(name: str) -> Route | None:
+    """:func:`wall_tour` of the built-in arena ``name`` (cached: the tour is the arena's, not
+    a run's)."""
+    return wall_tour(arenas.get(name))

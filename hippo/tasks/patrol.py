@@ -28,6 +28,7 @@ from scipy import ndimage
 from hippo._checks import check_seed
 from hippo.progress import Progress
 from hippo.sim import arenas
+from hippo.tasks.explore import arena_tour
 from hippo.tasks.routes import LapCounter, Route, lead_from, route_passes
 from hippo.tasks.session import Session
 from hippo.types import Mode, StateKind
@@ -35,6 +36,8 @@ from hippo.types import Mode, StateKind
 __all__ = [
     "ARENA_CHECKPOINTS",
     "HIREL_WAITS",
+    "ROUTE_KINDS",
+    "TOUR_REACH",
     "PatrolCourse",
     "PatrolPhase",
     "check_patrol",
@@ -58,6 +61,11 @@ ARENA_CHECKPOINTS: dict[str, list[tuple[float, float]]] = {
 HIREL_WAITS = [24.1, 19.1, 11.6, 16.0]
 #: a pass by a checkpoint: the robot's progress along the route within this many cm of it
 PASS_RADIUS = 30.0
+#: how a patrol route is built (:func:`patrol_route`)
+ROUTE_KINDS = ("auto", "shortest", "tour")
+#: a wall tour is a patrol's route only if it passes this close to every checkpoint (the
+#: lesson holds the robot at a checkpoint once it is within 20 cm of it)
+TOUR_REACH = 20.0
 
 
 class PatrolPhase(IntEnum):
@@ -71,18 +79,37 @@ class PatrolPhase(IntEnum):
     DEPLOYMENT = 7
 
 
-def patrol_route(arena_name: str, checkpoints: Sequence[Sequence[float]]) -> Route:
-    """The leash route: the corridor loop of patrol-course with its own checkpoints, else the
-    arena's shortest paths through the checkpoints and back (8 cm clear of walls where it
-    can)."""
+def patrol_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
+                 kind: str = "auto") -> Route:
+    """The leash route: the corridor loop of patrol-course with its own checkpoints, else, by
+    ``kind``: ``"shortest"`` — the arena's shortest paths through the checkpoints and back (8
+    cm clear of walls where it can; :meth:`Route.through`); ``"tour"`` — the loop the
+    exploring wall follower runs round the arena (:func:`hippo.tasks.wall_tour`), which must
+    pass within ``TOUR_REACH`` cm of every checkpoint; ``"auto"`` — the shortest paths where
+    they make a loop (:attr:`Route.winding` not 0), else the tour where it is a loop round
+    something and passes every checkpoint (two-rooms; a maze's tour runs every corridor out
+    and back too, 4,900 cm of it), else the shortest paths (out and back)."""
+    if kind not in ROUTE_KINDS:
+        raise ValueError(f"route kind must be one of {', '.join(ROUTE_KINDS)}, got {kind!r}")
     if arena_name == "patrol-course" and [tuple(map(float, c)) for c in checkpoints] == \
             ARENA_CHECKPOINTS["patrol-course"]:
         return Route(arenas.loop_waypoints())
-    return Route.through(arenas.get(arena_name), checkpoints, clearance=8.0)
+    if kind != "tour":
+        route = Route.through(arenas.get(arena_name), checkpoints, clearance=8.0)
+        if kind == "shortest" or route.winding != 0:
+            return route
+    tour = arena_tour(arena_name)
+    off = [c for c in checkpoints if tour is None or tour.distance(*c) > TOUR_REACH]
+    if not off and (kind == "tour" or tour.winding != 0):  # type: ignore[union-attr]
+        return tour  # type: ignore[return-value]
+    if kind == "tour":
+        raise ValueError(f"no wall tour of arena {arena_name!r} passes within {TOUR_REACH:g} cm"
+                         f" of checkpoint(s) {', '.join(f'({x:g}, {y:g})' for x, y in off)}")
+    return route
 
 
 def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
-                 waits: Sequence[float]) -> Route:
+                 waits: Sequence[float], kind: str = "auto") -> Route:
     """Raise ``ValueError`` naming the problem unless the checkpoints lie on free floor of the
     arena (6 cm clear of every wall) that the robot can reach from the arena's start, are
     reachable from each other and are at least
@@ -104,7 +131,7 @@ def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
         if parts[np.argmin(np.abs(xs - x)), np.argmin(np.abs(ys - y))] != home:
             raise ValueError(f"checkpoint ({x:g}, {y:g}) cannot be reached from the start of "
                              f"arena {arena_name!r} (it lies inside walls)")
-    route = patrol_route(arena_name, checkpoints)
+    route = patrol_route(arena_name, checkpoints, kind)
     s = sorted(route.progress(x, y) for x, y in checkpoints)
     gaps = np.diff([*s, s[0] + route.length])
     if gaps.min() < 40.0:

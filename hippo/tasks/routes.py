@@ -113,6 +113,11 @@ class Route:
         k = int(np.argmin(gap))
         return float(self._s0[k] + u[k] * self._len[k])
 
+    def distance(self, x: float, y: float) -> float:
+        """Distance (cm) from ``(x, y)`` to the nearest point of the route."""
+        px, py, _ = self.at(self.progress(x, y))
+        return math.hypot(px - x, py - y)
+
     def progress_near(self, x: float, y: float, near: float, window: float = 30.0) -> float:
         """Like :meth:`progress`, but only the part of the route within ``window`` cm (along
         it, either way) of progress ``near`` is searched: where a route runs along a corridor

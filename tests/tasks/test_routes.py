@@ -234,3 +234,10 @@ def test_winding_tells_a_loop_round_from_a_shuttle():
     assert shuttle.winding == 0
     # the loop of patrol-course runs counter-clockwise round its inner block
     assert Route(arenas.loop_waypoints()).winding == 1
+
+
+def test_distance_to_a_route_is_to_its_nearest_point():
+    r = Route(SQUARE)
+    assert r.distance(50.0, -7.0) == pytest.approx(7.0)
+    assert r.distance(50.0, 50.0) == pytest.approx(50.0)
+    assert r.distance(130.0, 140.0) == pytest.approx(50.0)   # from the corner (100, 100)
