@@ -523,6 +523,33 @@ def test_only_a_wait_where_the_anchor_said_anchors_the_next_run_up():
     assert anchors("b")                        # no run-up taught for b: nothing to check
 
 
+def test_a_stop_that_two_drives_share_serves_the_one_its_run_up_says_was_due():
+    # three checkpoints a -> b -> c -> a; a and c were taught where one learned place won, so
+    # both drives are linked to the one wait W. b's run-up is 50 cm after a, c's 70 cm after
+    # b, a's 150 cm after c
+    brain = Brain(Stub(), drives={n: DriveParams() for n in "abc"},
+                  params=BrainParams(runup_window=20.0))
+    w, other = (7, 8), (9, 10)
+    brain.drives.link("a", w)
+    brain.drives.link("c", w)
+    brain.drives.link("b", other)
+    served = brain.decide._served_by
+    assert served(other) == ["b"]                # one drive linked: it is served
+    assert served(w) == ["a", "c"]               # no anchor yet: both, as before
+    brain.runups = {"b": 50.0, "c": 70.0, "a": 150.0}
+    brain.runup_after = {"b": "a", "c": "b", "a": "c"}
+    brain.wait_ended_at, brain.last_wait_drive = 0.0, "b"
+    brain.odometer = 75.0
+    assert served(w) == ["c"]                    # c's place, 70 cm after b: c only
+    brain.odometer = 215.0
+    assert served(w) == ["a"]                    # c passed without a stop, a 150 cm on
+    brain.odometer = 120.0
+    assert served(w) == ["a", "c"]               # neither is due here: both
+    brain.wait_ended_at, brain.last_wait_drive = 0.0, "a"
+    brain.odometer = 52.0
+    assert served(w) == ["a", "c"]               # b is due here, and W is not b's: both
+
+
 def test_a_new_move_infers_its_way_back_which_experience_confirms_or_forgets():
     brain, run = make(infer_reverse=True)
     for where in "BAC":                      # B -> A -> C, heading 0 (odometry: forward)

@@ -285,10 +285,12 @@ class PatrolCourse:
         return math.dist(self.s.truth.pose[:2], point) < radius
 
     def reached(self, checkpoint: Sequence[float]) -> bool:
-        """Has the robot come to ``checkpoint`` (:meth:`LapCounter.reached`)? The lesson
-        blocks it there, not some way before it: every taught stop and run-up counts from
-        there."""
-        return self.loop.reached(*self.s.truth.pose[:2], checkpoint)
+        """Has the robot come to ``checkpoint`` (:meth:`LapCounter.reached`: level with it
+        along the route, within ``PASS_RADIUS``)? The lesson blocks it there, not some way
+        before it: every taught stop and run-up counts from there. (Within 20 cm, tuning seed
+        25's (131, 41), across the corridor from the robot's wall, was never reached; the
+        lesson led it round again and taught a run-up a lap too long.)"""
+        return self.loop.reached(*self.s.truth.pose[:2], checkpoint, radius=PASS_RADIUS)
 
     def learned_waits(self) -> list[float | None]:
         """Per checkpoint, the median learned delay of the transitions its drive is linked to
