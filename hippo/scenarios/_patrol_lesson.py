@@ -31,7 +31,7 @@ from hippo.tasks.patrol import (
     PatrolCourse,
     PatrolPhase,
     check_patrol,
-    patrol_route,
+    choose_route,
 )
 
 
@@ -88,8 +88,7 @@ def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser)
         for key in _META:
             setattr(args, key, meta[key])
         args.checkpoints = [tuple(c) for c in meta["checkpoints"]]
-        # (a robot saved before routes had kinds was taught on the shortest paths)
-        args.route = meta.get("route", "shortest")
+        args.route = meta_route(meta)
         return
     if getattr(args, "arena", None) is None:
         args.arena = "patrol-course"
@@ -115,6 +114,7 @@ class Lesson:
     course: PatrolCourse
     reproduced: float  # the fraction of the loop it reproduced alone after the leash
     taught_stops: list[float | None]  # per checkpoint, the robot's stillness while blocked
+    route_kind: str = "shortest"  # what its route is (hippo.tasks.patrol.choose_route)
 
 
 #: the options a saved lesson fixes (written into its meta, taken from it by --load)
@@ -180,16 +180,16 @@ def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
     if loaded is not None:
         s = Session(loaded["world"], loaded["agent"], Log(n_drives=len(checkpoints)),
                     obs=loaded["obs"], phase=PatrolPhase.CHECKPOINTS)
-        course = PatrolCourse(s, patrol_route(args.arena, checkpoints,
-                                              meta_route(loaded["meta"])), checkpoints, names)
+        kind, route = choose_route(args.arena, checkpoints, meta_route(loaded["meta"]))
+        course = PatrolCourse(s, route, checkpoints, names)
         course.loop = loaded["loop"]
         meta = loaded["meta"]
         return Lesson(s.world, s.agent, s, course, float(meta["reproduced"]),
-                      list(meta["taught_stops"]))
+                      list(meta["taught_stops"]), kind)
     arena = arenas.get(args.arena)
     world = World(arena, sensors="ir8", seed=seed)
     log = Log(n_drives=len(checkpoints))
-    route = patrol_route(args.arena, checkpoints, getattr(args, "route", "auto"))
+    kind, route = choose_route(args.arena, checkpoints, getattr(args, "route", "auto"))
     side = wall_side(route, arena, seed)
     # exploration: place cells only (HIREL learns the map on the leash)
     tour = explore(world, round(args.explore_min * 60 / world.dt), 0.0, seed, log, side=side)
@@ -213,7 +213,7 @@ def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
     longest = [max((st["duration"] for st in taught if st["checkpoint"] == k
                     and st["phase"] == PatrolPhase.CHECKPOINTS), default=None)
                for k in range(len(checkpoints))]
-    lesson = Lesson(world, agent, s, course, reproduced, longest)
+    lesson = Lesson(world, agent, s, course, reproduced, longest, kind)
     if getattr(args, "save", None) is not None:
         save_lesson(args.save, lesson, args)
     return lesson

@@ -58,8 +58,7 @@ from hippo.scenarios._common import prepare_out, write_metrics
 from hippo.scenarios._patrol_lesson import add_course_arguments, check_course_args, teach_patrol
 from hippo.sim import arenas
 from hippo.tasks import Route, stops
-from hippo.tasks.explore import arena_tour
-from hippo.tasks.patrol import ARENA_CHECKPOINTS, PatrolPhase, pass_report
+from hippo.tasks.patrol import PatrolPhase, pass_report
 
 Phase = PatrolPhase
 
@@ -73,12 +72,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 check_args = check_course_args
 
 
-def route_note(route: Route, arena: str | None = None) -> str:
+def route_note(route: Route, kind: str = "shortest") -> str:
     """What the summary says about a route the patrol is known not to hold on: one that runs
-    out and back (:attr:`Route.winding` 0) and is not the wall tour of ``arena`` (a tree's
-    tour runs every corridor both ways too, along the line the robot explored), else
-    nothing."""
-    if route.winding != 0 or (arena is not None and route is arena_tour(arena)):
+    out and back (:attr:`Route.winding` 0) and is not a wall tour (``kind``, from
+    :func:`hippo.tasks.patrol.choose_route`: a tree's tour runs every corridor both ways too,
+    along the line the robot explored), else nothing."""
+    if route.winding != 0 or kind == "tour":
         return ""
     return ("\nnote: this route runs out and back (it encloses little: Route.winding 0); the "
             "robot does not reproduce such routes yet (a known limitation: the patrol "
@@ -132,9 +131,7 @@ def run(args: argparse.Namespace) -> dict:
     metrics = {
         "place_cells": args.place_cells, "seed": seed, "arena": args.arena,
         "checkpoints_cm": [list(c) for c in checkpoints], "route_cm": loop_route.length,
-        "route_kind": ("tour" if loop_route is arena_tour(args.arena) else "course"
-                       if checkpoints == ARENA_CHECKPOINTS.get(args.arena) and
-                       args.arena == "patrol-course" else "shortest"),
+        "route_kind": lesson.route_kind,
         "route_winding": loop_route.winding, "wall_side": int(agent.p.wall_side),
         "waits_s": waits, "loops": loops,
         "quick": quick, "place_units": places.n_units,
@@ -167,7 +164,7 @@ def run(args: argparse.Namespace) -> dict:
         f"{r['checkpoint']}: learned {r['learned_wait_s']:.1f} s, reproduced "
         + (f"{r['mean_s']:.1f} ± {r['sd_s']:.2f} s" if r["mean_s"] is not None else "none")
         for r in rows if r["learned_wait_s"] is not None)
-    shuttle = route_note(loop_route, args.arena)
+    shuttle = route_note(loop_route, lesson.route_kind)
     write_metrics(out, metrics, summary=(
         f"patrol ({args.arena}, {args.place_cells} place cells): stopped at "
         f"{metrics['checkpoint_stops_made']} of {metrics['checkpoint_stops_expected']} "

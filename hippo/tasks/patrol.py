@@ -4,9 +4,9 @@ by a checkpoint gave.
 
 - ``ARENA_CHECKPOINTS`` — default checkpoints of the built-in arenas; ``HIREL_WAITS`` — HIREL's
   taught waits (s).
-- :func:`patrol_route` — the leash route through the checkpoints; :func:`check_patrol` — the
-  checks a user's checkpoints and waits must pass (free floor, reachable, 40 cm apart along
-  the route, one wait each).
+- :func:`patrol_route`, :func:`choose_route` — the leash route through the checkpoints (and
+  what it is); :func:`check_patrol` — the checks a user's checkpoints and waits must pass
+  (free floor, reachable, 40 cm apart along the route, one wait each).
 - :class:`PatrolPhase` — the phases of the patrol scenarios (their names go into ``run.npz``).
 - :class:`PatrolCourse` — the phases on a :class:`~hippo.tasks.Session`: :meth:`teach`,
   :meth:`patrol`, :meth:`adapt`, :meth:`kidnap`, and the lap bookkeeping behind them.
@@ -34,17 +34,8 @@ from hippo.tasks.session import Session
 from hippo.types import Mode, StateKind
 
 __all__ = [
-    "ARENA_CHECKPOINTS",
-    "HIREL_WAITS",
-    "ROUTE_KINDS",
-    "TOUR_REACH",
-    "PatrolCourse",
-    "PatrolPhase",
-    "check_patrol",
-    "pass_report",
-    "patrol_rounds",
-    "patrol_route",
-    "random_patrol",
+    "ARENA_CHECKPOINTS", "HIREL_WAITS", "ROUTE_KINDS", "TOUR_REACH", "PatrolCourse", "PatrolPhase",
+    "check_patrol", "choose_route", "pass_report", "patrol_rounds", "patrol_route", "random_patrol",
 ]
 
 #: the arenas a patrol runs in, with their default checkpoints (cm): patrol-course's are its
@@ -63,8 +54,8 @@ HIREL_WAITS = [24.1, 19.1, 11.6, 16.0]
 PASS_RADIUS = 30.0
 #: how a patrol route is built (:func:`patrol_route`)
 ROUTE_KINDS = ("auto", "shortest", "tour")
-#: a wall tour is a patrol's route only if it passes this close to every checkpoint (the
-#: lesson holds the robot at a checkpoint once it is within 20 cm of it)
+#: a wall tour is a patrol's route only if it passes this close to every checkpoint (chosen
+#: when the lesson held the robot within 20 cm of a checkpoint; it now allows PASS_RADIUS)
 TOUR_REACH = 20.0
 
 
@@ -81,31 +72,36 @@ class PatrolPhase(IntEnum):
 
 def patrol_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
                  kind: str = "auto") -> Route:
-    """The leash route: the corridor loop of patrol-course with its own checkpoints, else, by
-    ``kind``: ``"shortest"`` — the arena's shortest paths through the checkpoints and back (8
-    cm clear of walls where it can; :meth:`Route.through`); ``"tour"`` — the loop the
-    exploring wall follower runs round the arena (:func:`hippo.tasks.wall_tour`), which must
-    pass within ``TOUR_REACH`` cm of every checkpoint; ``"auto"`` — the shortest paths where
-    they make a loop (:attr:`Route.winding` not 0), else the tour where it is a loop round
-    something and passes every checkpoint (two-rooms; a maze's tour runs every corridor out
-    and back too, 4,900 cm of it), else the shortest paths (out and back)."""
+    """The leash route of :func:`choose_route`."""
+    return choose_route(arena_name, checkpoints, kind)[1]
+
+
+def choose_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
+                 kind: str = "auto") -> tuple[str, Route]:
+    """``(what it is, the leash route)``: ``"course"``, patrol-course's corridor loop for its
+    own checkpoints; else by ``kind``: ``"shortest"``, the shortest paths through the
+    checkpoints and back (:meth:`Route.through`, 8 cm clear of walls where it can); ``"tour"``,
+    the exploring wall follower's loop (:func:`hippo.tasks.wall_tour`), within ``TOUR_REACH``
+    cm of every checkpoint; ``"auto"``: the shortest paths if they make a loop
+    (:attr:`Route.winding` not 0), else the tour if it goes round something and passes every
+    checkpoint (two-rooms; a maze's 4,900 cm tour runs out and back too), else the shortest."""
     if kind not in ROUTE_KINDS:
         raise ValueError(f"route kind must be one of {', '.join(ROUTE_KINDS)}, got {kind!r}")
     if arena_name == "patrol-course" and [tuple(map(float, c)) for c in checkpoints] == \
             ARENA_CHECKPOINTS["patrol-course"]:
-        return Route(arenas.loop_waypoints())
+        return "course", Route(arenas.loop_waypoints())
     if kind != "tour":
         route = Route.through(arenas.get(arena_name), checkpoints, clearance=8.0)
         if kind == "shortest" or route.winding != 0:
-            return route
+            return "shortest", route
     tour = arena_tour(arena_name)
     off = [c for c in checkpoints if tour is None or tour.distance(*c) > TOUR_REACH]
     if not off and (kind == "tour" or tour.winding != 0):  # type: ignore[union-attr]
-        return tour  # type: ignore[return-value]
+        return "tour", tour  # type: ignore[return-value]
     if kind == "tour":
         raise ValueError(f"no wall tour of arena {arena_name!r} passes within {TOUR_REACH:g} cm"
                          f" of checkpoint(s) {', '.join(f'({x:g}, {y:g})' for x, y in off)}")
-    return route
+    return "shortest", route
 
 
 def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
