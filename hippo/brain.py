@@ -144,8 +144,7 @@ class Brain:
         self.occlusion = occlusion
         self.t = 0.0
         self.decide = Decider(self)
-        self._moving = True
-        self._flip = 0
+        self._moving, self._flip = True, 0
         self._settle_until = -math.inf
         self.localiser = None if p.relocalise is None else MapLocaliser(p.relocalise)
         self._clear_view: np.ndarray | None = None
@@ -160,6 +159,7 @@ class Brain:
                          doc="the place (or colour) entered before the current one")
     current = property(lambda self: self.decide.current, doc="the transition executed")
 
+    entry_unseen = False   # re-anchored inside this place: no stop until the next is entered
     def entered_since(self, state: int) -> float | None:
         """When the place (or colour) ``state`` was last entered in this episode (None: not
         since the last lift or reset)."""
@@ -169,6 +169,7 @@ class Brain:
     # -- episode bookkeeping ------------------------------------------------------------------
     def _reset_episode(self) -> None:
         self.state: int | None = None
+        self.entry_unseen = False
         self._entries: dict[int, tuple[float, tuple[float, float, float]]] = {}
         # the context states (places, colours) entered last and the one before it
         self._ctx_now: int | None = None
@@ -185,19 +186,21 @@ class Brain:
         self.readouts: dict = {}
         self.decide.reset_episode()
 
-    def lifted(self, heading_change: float = 0.0, *, keep_drives: bool = False) -> None:
+    def lifted(self, heading_change: float = 0.0, *, keep_drives: bool = False,
+               moved: bool = True) -> None:
         """The robot was picked up and put down elsewhere: no transition spans the jump, and
-        the state competition starts afresh (the place cells keep their memory).
+        the state competition starts afresh (the place cells keep their memory, or re-anchor).
 
         ``heading_change`` (rad) is how much the robot was turned while carried; the heading
         estimate follows it (a robot's compass or head-direction system, not its place cells).
-        ``keep_drives``: a perturbation in the middle of a task (a kidnap, a rescue): a drive
-        that a finished wait inhibited stays inhibited until the robot has moved
-        ``release_distance`` from where it was put and left that stop's place (being carried
-        satisfies no drive and renews none). False (default): a new trial, every drive
-        released.
+        ``keep_drives``: a perturbation in the middle of a task (a kidnap, a rescue): a drive a
+        finished wait inhibited stays so until the robot has moved ``release_distance`` from
+        where it was put and left that stop's place (being carried satisfies no drive and renews
+        none). False (default): a new trial, every drive released. ``moved`` False: put back
+        where it was (nothing for the place cells to re-anchor).
         """
         self.pi.heading = wrap_angle(self.pi.heading + heading_change)
+        getattr(self.places, "lifted", lambda: None)() if moved else None   # re-anchor?
         self.layer.reset(keep_states=True)
         self.nonocc.reset()
         kept = self.decide.inhibitions() if keep_drives else {}
@@ -276,6 +279,8 @@ class Brain:
         else:
             self._clear_view = ir
             acts = self.places.step(obs, truth)
+        if self.localiser is not None and getattr(self.places, "anchored", False):
+            self.localiser.anchor(obs.t)   # the place code jumped to where the readings match
         turning = abs(float(dth)) > p.still_turn * p.dt
         moving = bool(obs.moving or turning)
         if moving != self._moving:
@@ -306,6 +311,8 @@ class Brain:
             self._ctx_now, self._ctx_before = ev.winner, None
             if self.kind(ev.winner) == StateKind.PLACE:   # a held stop's place may win at once
                 self.decide.passed_held_stop(ev.winner)
+            # re-anchored inside a place (its entry unseen): no stop, no delay (tuning seed 7)
+            self.entry_unseen = getattr(self.localiser, "by_anchor", False)
             self.decide.choose()
         elif ev.changed:
             self._on_event(ev.winner)
@@ -335,6 +342,8 @@ class Brain:
         kind = self.kind(new)
         if kind == StateKind.MOVING and (prev is None or self.kind(prev) != StateKind.STILL):
             prev = None  # "moving" without a stop before it (e.g. after being lifted): no event
+        if self.entry_unseen:
+            prev, self.entry_unseen = None, False   # a stay that began unseen times nothing
         entered_at, entry_pose = self.entered_at, self._entry_pose
         ctx = self.layer.key(new).context
         if (kind == StateKind.STILL and prev is not None and ctx is not None and ctx != prev

@@ -235,8 +235,14 @@ def out_file(text: str) -> Path:
 PLACE_CELLS = ("learned", "ground-truth")
 
 
-def add_place_cells(parser: argparse.ArgumentParser) -> None:
-    """``--place-cells learned|ground-truth``: the one option every closed-loop task shares."""
+def add_place_cells(parser: argparse.ArgumentParser, *, reanchor: bool = False) -> None:
+    """``--place-cells learned|ground-truth`` and ``--[no-]reanchor`` (default ``reanchor``):
+    the options every closed-loop task shares."""
     parser.add_argument("--place-cells", choices=PLACE_CELLS, default="learned",
                         help="learned from the robot's sensors, or Gaussian fields on the true "
                              "position (to measure what learning costs)")
+    parser.add_argument("--reanchor", action=argparse.BooleanOptionalAction, default=reanchor,
+                        help="after a lift, jump the learned place cells' reservoir to where "
+                             "the robot's next readings match its exploration; it re-localises "
+                             "in seconds, but the patrol kidnap chose a high-drive checkpoint "
+                             f"less often (default {'on' if reanchor else 'off'})")

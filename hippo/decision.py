@@ -202,6 +202,7 @@ class Decider(SoftRecognition, RunupRules):
             self.current_since = b.t
             return
         out = g.outgoing(s)
+        exclude_wait = exclude_wait or b.entry_unseen   # no stop timed from an unseen entry
         if exclude_wait:
             out = [t for t in out if not g.action(t).is_wait]
         if not out:

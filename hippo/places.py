@@ -15,6 +15,7 @@ import numpy as np
 
 from hippo._checks import check_finite, check_positive
 from hippo.perception.prototypes import PlacePrototypes
+from hippo.perception.relocate import SequenceRelocaliser
 from hippo.types import GroundTruth, Observation
 
 __all__ = ["GroundTruthPlaceCells", "LearnedPlaceCells", "PlaceSource"]
@@ -32,6 +33,8 @@ class PlaceSource(Protocol):
 
     def prime(self, sensors: np.ndarray) -> None: ...
 
+    # optional: ``lifted()``, called by the brain when the robot is picked up and put down
+
 
 class LearnedPlaceCells:
     """Place cells learned by RC-SFA-ICA from the robot's own distance sensors (the default).
@@ -40,12 +43,17 @@ class LearnedPlaceCells:
     readings only (never the pose or odometry). With ``prototypes`` (a fitted
     :class:`~hippo.perception.prototypes.PlacePrototypes`), the activities are those of
     radial-basis place cells over the whole ICA population vector instead of the ICA units
-    themselves (less aliasing; see that module).
+    themselves (less aliasing; see that module). With ``relocaliser`` (a fitted
+    :class:`~hippo.perception.relocate.SequenceRelocaliser`), a lift (:meth:`lifted`) makes the
+    reservoir jump to where the robot's next readings match its exploration.
     """
 
     kind = "learned"
+    relocaliser: SequenceRelocaliser | None = None   # (snapshots saved before it existed)
+    anchored = False   # the reservoir was re-anchored on this tick
 
-    def __init__(self, model: Any, prototypes: PlacePrototypes | None = None) -> None:
+    def __init__(self, model: Any, prototypes: PlacePrototypes | None = None, *,
+                 relocaliser: SequenceRelocaliser | None = None) -> None:
         if getattr(model, "ica_", None) is None:
             raise ValueError("LearnedPlaceCells needs a fitted RCSFAICA model")
         if prototypes is not None:
@@ -57,15 +65,36 @@ class LearnedPlaceCells:
         self.model = model
         self.prototypes = prototypes
         self.n_units = prototypes.n_units if prototypes is not None else int(model.params.n_ica)
+        if relocaliser is not None and not isinstance(relocaliser, SequenceRelocaliser):
+            raise TypeError(f"relocaliser must be a SequenceRelocaliser, got {relocaliser!r}")
+        if relocaliser is not None and (model.params.downsample > 1 or model.params.slow_pool):
+            raise ValueError("re-anchoring sets the reservoir state alone: it needs a model "
+                             "without down-sampling or a slow pool")
+        self.relocaliser = relocaliser
 
     def step(self, obs: Observation, truth: GroundTruth | None = None) -> np.ndarray:
         """Activities after this tick's sensor readings (``truth`` is ignored)."""
+        rel = self.relocaliser
+        self.anchored = False
+        if rel is not None and rel.active:
+            x = rel.observe(obs.ir, obs.moving)
+            if x is not None:
+                self.model.reservoir_.reset(x)   # re-anchored: this reading moves it on
+                self.anchored = True
         y = self.model.step(obs.ir)
         # the model's output is finite and of the prototypes' dimension: no second check
         return y if self.prototypes is None else self.prototypes._step(y)
 
     def reset(self) -> None:
         self.model.reset_state()
+        if self.relocaliser is not None:
+            self.relocaliser.stop()
+
+    def lifted(self) -> None:
+        """The robot was picked up and put down: re-anchor the reservoir once its readings
+        match a stretch of its exploration (nothing without a relocaliser)."""
+        if self.relocaliser is not None:
+            self.relocaliser.start()
 
     def prime(self, sensors: np.ndarray) -> None:
         """Start the online loop from the state of a robot that has been sensing: reset, then

@@ -77,7 +77,8 @@ class SoftRecognition:
         (``_runup_due``) is due, nor after a lift that kept the held drives (a kidnap, a
         rescue) until a held stop the robot passes re-anchors the run-ups: with no anchor a
         coactive place sets no bound, and one 15 cm before the checkpoint the robot was put
-        before made another checkpoint's stop there (tuning seeds 48 and 68). An approach by
+        before made another checkpoint's stop there (tuning seeds 48 and 68); nor inside a
+        place the place code was re-anchored into (``Brain.entry_unseen``). An approach by
         an alias is timed from entering it."""
         b = self.b
         p = b.p
@@ -86,7 +87,7 @@ class SoftRecognition:
         # ever: a whole patrol, held-out seed 107) nor just starting off after a wait
         if (self.mode != Mode.MOVE or b.state is None or b.kind(b.state) != StateKind.PLACE
                 or self._runup_due() or p.coactive <= 0
-                or self.reanchoring()):
+                or self.reanchoring() or b.entry_unseen):
             return
         acts = b.layer.place_activity
         if acts.size == 0:

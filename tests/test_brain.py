@@ -775,3 +775,41 @@ def test_hold_heading_keeps_a_moving_robot_from_turning_round(hold):
         assert decide.current == (a, b) and decide.heading == pytest.approx(math.pi)
     decide.choose(a, exclude_wait=True)                # moving on after a wait
     assert decide.current == (a, b)
+
+
+def test_re_anchored_inside_a_place_the_robot_stops_there_only_after_entering_one():
+    """A place source that re-anchors after a lift (``anchored``) localises the robot at the
+    next place change, inside that place: its entry was not seen, so no stop is timed from it
+    (patrol kidnap, tuning seed 7: a stop 43 cm past its checkpoint) until a place is
+    entered."""
+    from hippo.cognitive_map import LocaliserParams
+
+    class Anchoring(Stub):
+        anchored = False
+
+        def lifted(self) -> None:
+            self.lifts = getattr(self, "lifts", 0) + 1
+
+    places = Anchoring()
+    p = BrainParams(states=StateLayerParams(normalize="fixed", place_scale=0.5, context_time=1.0),
+                    settle_time=0.0, cycle_visits=100, relocalise=LocaliserParams(max_time=60.0))
+    brain = Brain(places, drives={"sound": DriveParams(epsilon=0.5)}, params=p)
+    run = Run(brain, places)
+    for _ in range(3):
+        run.trial(2.0)
+    run.ticks(40, "B", moving=True)          # the drive grows: a stop at A is wanted
+    assert brain.drives.level("sound") > 0.1
+    brain.lifted(keep_drives=True)
+    assert places.lifts == 1
+    run.ticks(3, "B", moving=True)           # the stale place: settling
+    places.anchored = True
+    assert run.step("B", moving=True).settling
+    places.anchored = False
+    ticks = run.ticks(10, "A", moving=True)  # the jump's switch to A: localised, inside A
+    assert ticks[0].settling and not ticks[-1].settling and brain.localiser.by_anchor
+    assert brain.entry_unseen and brain.state is not None
+    assert all(t.mode not in (Mode.APPROACH, Mode.WAIT) for t in ticks)
+    run.ticks(5, "B", moving=True)           # a place entered ...
+    assert not brain.entry_unseen
+    later = run.ticks(10, "A", moving=True)  # ... and A entered: its stop is made again
+    assert any(t.mode in (Mode.APPROACH, Mode.WAIT) for t in later)

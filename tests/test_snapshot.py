@@ -168,3 +168,33 @@ def test_world_with_a_teacher_is_refused_clearly(tmp_path):
     Teacher(world)
     with pytest.raises(SnapshotError, match="teacher"):
         save_snapshot(world, tmp_path / "w")
+
+
+def test_a_robot_lifted_mid_match_continues_bit_identically(tmp_path):
+    """The relocaliser's exploration, its half-filled window and the shared reservoir are
+    saved with the robot; the restored robot re-anchors exactly where the original does."""
+    from hippo.perception.relocate import RelocaliserParams, SequenceRelocaliser
+
+    arena = arenas.get("two_rooms")
+    rec = record(arena, 1500, seed=1)
+    model = RCSFAICA(n_reservoir=100, ica_restarts=2).fit(rec.sensors)
+    Y = model.transform(rec.sensors)
+    protos = PlacePrototypes(PrototypeParams(n_prototypes=12)).fit(Y)
+    rel = SequenceRelocaliser(RelocaliserParams(skip=100)).fit(
+        model.reservoir_, np.argmax(protos.transform(Y), axis=1), rec.sensors,
+        np.ones(len(rec.sensors), bool))
+    world = World(arena, seed=0)
+    agent = Agent(LearnedPlaceCells(model, protos, relocaliser=rel),
+                  drives={"food": DriveParams(epsilon=0.02)}, sensors=world.sensors,
+                  robot=world.robot, seed=0)
+    obs = world.reset(0)
+    for _ in range(300):
+        obs = world.step(agent.step(obs))
+    agent.lifted()
+    obs = world.step(agent.step(obs))          # one reading into the window
+    assert rel.active
+    save_snapshot(agent, tmp_path / "robot")
+    restored = load_snapshot(tmp_path / "robot", Agent)
+    assert restored.places.relocaliser.reservoir is restored.places.model.reservoir_
+    _continue_identically(agent, world, obs, restored, 200)
+    assert rel.matched_after is not None

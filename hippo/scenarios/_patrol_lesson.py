@@ -193,7 +193,8 @@ def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
     side = wall_side(route, arena, seed)
     # exploration: place cells only (HIREL learns the map on the leash)
     tour = explore(world, round(args.explore_min * 60 / world.dt), 0.0, seed, log, side=side)
-    places = make_places(args.place_cells, arena, tour.sensors, units, seed, args.places)
+    places = make_places(args.place_cells, arena, tour.sensors, units, seed, args.places,
+                         moving=tour.moving if args.reanchor else None)
     places.prime(tour.sensors[-500:])  # the robot's reservoir ran all along: go on from there
     drive = DriveParams(epsilon=0.01, learning_rate=0.5)
     # after a kidnap or a rescue the robot goes on with its task (its drives kept): it first

@@ -135,6 +135,7 @@ def run(args: argparse.Namespace) -> dict:
         "route_winding": loop_route.winding, "wall_side": int(agent.p.wall_side),
         "waits_s": waits, "loops": loops,
         "quick": quick, "place_units": places.n_units,
+        "reanchor": getattr(places, "relocaliser", None) is not None,
         "loaded_from": str(args.load) if getattr(args, "load", None) is not None else None,
         "reproduced_loop_fraction": float(reproduced),
         "loops_completed": float(completed),

@@ -303,8 +303,8 @@ class PatrolCourse:
         taught by blocks (in order, and the first once more); returns the fraction of the
         loop reproduced."""
         s, agent, dt = self.s, self.agent, self.dt
-        # let the place cells settle on the course before the leash
-        agent.lifted()
+        # let the place cells settle on the course before the leash (not moved: no re-anchoring)
+        agent.lifted(moved=False)
         s.run(int(agent.p.settle_time / dt) + 1)
         # one loop on the leash, counter-clockwise from the nearest waypoint ahead
         s.teacher.lead(self.from_here(self.route.loop_from(s.truth.pose)))

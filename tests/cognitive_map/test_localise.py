@@ -144,3 +144,31 @@ def test_once_localised_it_stays_localised_until_the_next_lift():
 def test_params_of_the_wrong_type_are_named():
     with pytest.raises(TypeError, match="params must be LocaliserParams"):
         MapLocaliser({"n_known": 2})
+
+
+def test_after_the_place_code_is_re_anchored_the_next_change_localises():
+    g, loc = corridor(), MapLocaliser()
+    loc.reset(0.0)
+    assert not loc.observe(3, 1.0, g)          # stale
+    loc.anchor(2.0)
+    assert not loc.localised                   # the anchor alone does not localise ...
+    assert loc.observe(1, 2.2, g)              # ... the next change does, known or not
+    assert loc.by_anchor and loc.time_to_localise == pytest.approx(2.2)
+    loc.reset(5.0)                             # a new lift forgets the anchor
+    assert not loc.by_anchor
+    assert not loc.observe(3, 6.0, g)
+    assert not loc.observe(1, 7.0, g)
+    assert loc.observe(2, 8.0, g) and not loc.by_anchor   # known: localised the map's way
+
+
+def test_anchor_settle_lets_the_jump_switch_pass():
+    g, loc = corridor(), MapLocaliser(LocaliserParams(anchor_settle=1.0))
+    loc.reset(0.0)
+    loc.anchor(2.0)
+    assert not loc.observe(1, 2.4, g)          # the jump's own switch, within 1 s
+    assert loc.observe(4, 3.5, g) and loc.by_anchor
+
+
+def test_a_negative_anchor_settle_is_refused():
+    with pytest.raises(ValueError):
+        LocaliserParams(anchor_settle=-1.0)

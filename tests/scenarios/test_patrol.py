@@ -86,3 +86,16 @@ def test_the_summary_names_a_route_out_and_back_as_a_known_limitation():
     assert "out and back" in route_note(out_and_back)
     assert route_note(patrol_route("goal-arena", [(85.0, 15.0), (132.0, 76.0),
                                                   (45.0, 136.0)])) == ""
+
+
+def test_learned_cells_re_anchor_after_the_kidnap_when_asked(tmp_path):
+    """--reanchor: the kidnapped robot's place code jumps to where its readings match the
+    exploration and the map trusts it sooner; by default it settles by itself."""
+    on = run_scenario("patrol", ["--quick", "--seed", "1", "--reanchor",
+                                 "--out", str(tmp_path / "on")])
+    off = run_scenario("patrol", ["--quick", "--seed", "1", "--out", str(tmp_path / "off")])
+    assert on["reanchor"] is True and off["reanchor"] is False
+    k_on, k_off = on["kidnap"], off["kidnap"]
+    assert k_on["relocalised_after_s"] is not None
+    assert k_on["relocalised_after_s"] < k_off["relocalised_after_s"]
+    assert k_on["passed_the_low_drive"]
