@@ -29,17 +29,18 @@ needed is re-run from the nearest kept state.
 
 Measured (``hippo run patrol --reanchor``; every figure below beside the same seeds without it,
 whose patrols are the same tick for tick up to the kidnap). Offline first, patrol-course seeds
-0-1, 12 random lifts each onto the explored line: the best match of 5 readings lay within
-4 cm of where the robot was in 23 of 24 lifts (15 cm in the other). In the closed loop, the kidnap (put 75 cm before the checkpoint
-served last) is re-localised after 3.6 s median instead of 12.4 s (tuning seeds 0-15, default
-course) and 7.1 s instead of 20.3 s (tuning seeds 0-29, random checkpoints); on held-out seeds
-never run before, 3.7 s (19 ticks) instead of 13.8 s (140-159, default course) and 6.1 s
-(31 ticks) instead of 17.0 s (170-189, random checkpoints). But the robot, deciding sooner,
-then chose a high-drive checkpoint less often: 15/16 and 27/30 against 15/16 and 28/30 on the
-tuning seeds, 17/20 and 16/20 against 18/20 and 19/20 on the held-out ones. So it is an
-option, off by default (``--reanchor``). Place preference's lift to a start (tuning seeds 0-4):
-34 of 59 rewarded paths within 1.5 x the shortest against 43 of 60; a match made on the west
-start before the goal zone turned the robot round, and the south start stayed at 3.3 x.
+0-1, 12 random lifts each onto the explored line: the best match of 5 readings lay within 4 cm
+of where the robot was in 23 of 24 lifts (15 cm in the other). In the closed loop, the kidnap
+(put 75 cm before the checkpoint served last) is re-localised after 3.6 s median instead of
+12.4 s (tuning seeds 0-15, default course) and 7.1 s instead of 20.3 s (tuning seeds 0-29,
+random checkpoints); on held-out seeds never run before, 3.7 s (19 ticks) instead of 13.8 s
+(140-159, default course) and 6.1 s (31 ticks) instead of 17.0 s (170-189, random
+checkpoints). But the robot, deciding sooner, then chose a high-drive checkpoint less often:
+15/16 and 27/30 against 15/16 and 28/30 on the tuning seeds, 17/20 and 16/20 against 18/20 and
+19/20 on the held-out ones. So it is an option, off by default (``--reanchor``). Place
+preference's lift to a start (tuning seeds 0-4): 34 of 59 rewarded paths within 1.5 x the
+shortest against 43 of 60; a match made on the west start before the goal zone turned the robot
+round, and the south start stayed at 3.3 x.
 """
 
 from __future__ import annotations
