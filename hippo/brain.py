@@ -214,22 +214,23 @@ class Brain:
             self.localiser.reset(self.t)
             self._settle_until = math.inf   # until the map recognises where the robot is
 
-    def reward(self, drive: str) -> None:
+    def reward(self, drive: str, *, runup: bool = True) -> None:
         """An external satisfaction of ``drive``: linked to the next transition performed
         (unless that is a wait already another drive's goal and ``drive`` has a goal of its
-        own: a repeated lesson in an aliased place teaches only the run-up)."""
+        own: a repeated lesson in an aliased place teaches only the run-up). ``runup`` False:
+        the run since the reward before is no run-up (the teacher led the robot back from a
+        detour), though this reward still anchors the next."""
         if drive not in self.drives:
             raise KeyError(f"unknown drive {drive!r}; known: {', '.join(self.drives.names)}")
         self._pending_rewards.append(drive)
         # the stop just rewarded is a taught one: its run-up is the run since the reward
-        # before (the robot's own stops in between do not count), and it anchors the next
-        # (a reward far from the run-up already taught, e.g. the teacher's block at a
-        # checkpoint after hours of patrol, does not replace it)
-        runup = None if self._rewarded_at is None else self.odometer - self._rewarded_at
+        # before (the robot's own stops in between do not count), and it anchors the next (a
+        # reward far from the run-up already taught, e.g. a block after hours, keeps it)
+        ran = self.odometer - self._rewarded_at if runup and self._rewarded_at is not None else None
         taught = self.runups.get(drive)
-        if (runup is not None and self._rewarded_drive is not None
-                and (taught is None or abs(runup - taught) <= self.p.runup_window)):
-            self.runups[drive] = runup
+        if (ran is not None and self._rewarded_drive is not None
+                and (taught is None or abs(ran - taught) <= self.p.runup_window)):
+            self.runups[drive] = ran
             self.runup_after[drive] = self._rewarded_drive
         self._rewarded_at = self.wait_ended_at = self.odometer
         self._rewarded_drive = self.last_wait_drive = drive
@@ -311,8 +312,7 @@ class Brain:
             self._ctx_now, self._ctx_before = ev.winner, None
             if self.kind(ev.winner) == StateKind.PLACE:   # a held stop's place may win at once
                 self.decide.passed_held_stop(ev.winner)
-            # re-anchored inside a place (its entry unseen): no stop, no delay (tuning seed 7)
-            self.entry_unseen = getattr(self.localiser, "by_anchor", False)
+            self.entry_unseen = getattr(self.localiser, "by_anchor", False)   # re-anchored inside
             self.decide.choose()
         elif ev.changed:
             self._on_event(ev.winner)

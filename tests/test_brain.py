@@ -813,3 +813,15 @@ def test_re_anchored_inside_a_place_the_robot_stops_there_only_after_entering_on
     assert not brain.entry_unseen
     later = run.ticks(10, "A", moving=True)  # ... and A entered: its stop is made again
     assert any(t.mode in (Mode.APPROACH, Mode.WAIT) for t in later)
+
+
+def test_a_lesson_led_back_from_a_detour_teaches_no_run_up_but_anchors_the_next():
+    brain, run = make()
+    run.ticks(10, "B", moving=True)
+    brain.reward("sound")                      # the first lesson: nothing before it
+    run.ticks(47, "B", moving=True)            # 47 cm, a detour the teacher led it back from
+    brain.reward("sound", runup=False)
+    assert "sound" not in brain.runups
+    run.ticks(30, "C", moving=True)
+    brain.reward("sound")                      # 30 cm from the lesson before
+    assert brain.runups["sound"] == pytest.approx(30.0)

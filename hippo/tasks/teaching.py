@@ -3,6 +3,9 @@
 :class:`Experimenter` plays the reward sound once the robot has been still on a coloured
 floor zone for ``delay`` s (HIREL's place preference). Call it every tick with the observation
 (it is a ``Session.run`` ``until`` predicate that never stops the run by itself).
+
+:func:`lessons_again` — the patrol lesson's order grows when a checkpoint's lesson needed the
+leash.
 """
 
 from __future__ import annotations
@@ -11,7 +14,7 @@ from typing import Any
 
 from hippo.types import Observation
 
-__all__ = ["Experimenter"]
+__all__ = ["Experimenter", "lessons_again"]
 
 
 class Experimenter:
@@ -45,3 +48,13 @@ class Experimenter:
             self.teacher.sound()
             self.sounded = True
         return False
+
+
+def lessons_again(order: list[int], k: int, again: set[int]) -> None:
+    """The lesson at checkpoint ``k`` of a patrol taught in ``order`` (``[0, 1, ..., n-1,
+    0]``) needed the leash (the robot went astray): append the lessons ``1..k`` once more, in
+    order, so that ``k`` is taught again after the one before it, as its run-up needs. Once
+    per checkpoint (``again`` keeps which); nothing for checkpoint 0, taught twice anyway."""
+    if k and k not in again:
+        again.add(k)
+        order += range(1, k + 1)

@@ -112,3 +112,16 @@ def test_a_kidnap_keeps_the_heading_estimate_exact_even_mid_turn():
     assert abs(s.obs.odometry[2]) > 0.05
     s.put(150.0, 15.0, 2.0)
     assert agent.brain.pi.heading == pytest.approx(2.0, abs=1e-9)
+
+
+def test_a_lesson_that_needed_the_leash_is_given_again_after_the_one_before_it():
+    from hippo.tasks.teaching import lessons_again
+
+    order, again = [0, 1, 2, 0], set()
+    lessons_again(order, 2, again)            # checkpoint 2 needed the leash: 1, 2 again
+    assert order == [0, 1, 2, 0, 1, 2]
+    lessons_again(order, 2, again)            # once per checkpoint
+    lessons_again(order, 0, again)            # 0 is taught twice anyway
+    assert order == [0, 1, 2, 0, 1, 2]
+    lessons_again(order, 1, again)
+    assert order == [0, 1, 2, 0, 1, 2, 1] and again == {1, 2}
