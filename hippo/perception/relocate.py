@@ -50,7 +50,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_fields, check_finite
+from hippo._checks import check_fields, check_finite, check_int
 
 __all__ = ["RelocaliserParams", "SequenceRelocaliser"]
 
@@ -82,10 +82,7 @@ class RelocaliserParams:
     def __post_init__(self) -> None:
         check_fields(self)
         for name in ("window", "spread", "max_ticks", "every", "skip"):
-            v = getattr(self, name)
-            lo = 0 if name == "skip" else 1
-            if int(v) != v or v < lo:
-                raise ValueError(f"{name} must be an integer >= {lo}, got {v!r}")
+            check_int(name, getattr(self, name), lo=0 if name == "skip" else 1)
         if not self.ratio >= 1.0:
             raise ValueError(f"ratio must be >= 1, got {self.ratio!r}")
         if not 0.0 < self.quantile <= 1.0:
