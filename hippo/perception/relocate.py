@@ -50,7 +50,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_fields, check_finite, check_int
+from hippo._checks import check_fields, check_finite, check_int, check_range
 
 __all__ = ["RelocaliserParams", "SequenceRelocaliser"]
 
@@ -85,8 +85,7 @@ class RelocaliserParams:
             check_int(name, getattr(self, name), lo=0 if name == "skip" else 1)
         if not self.ratio >= 1.0:
             raise ValueError(f"ratio must be >= 1, got {self.ratio!r}")
-        if not 0.0 < self.quantile <= 1.0:
-            raise ValueError(f"quantile must lie in (0, 1], got {self.quantile!r}")
+        check_range("quantile", self.quantile, 0.0, 1.0, closed="right")
         if self.max_ticks < self.window:
             raise ValueError(f"max_ticks ({self.max_ticks}) must be at least window "
                              f"({self.window})")
@@ -165,6 +164,7 @@ class SequenceRelocaliser:
         self._n = self._seen = 0
 
     def stop(self) -> None:
+        """Stop looking (the place cells were reset)."""
         self.active = False
 
     def observe(self, u: np.ndarray, moving: bool) -> np.ndarray | None:
@@ -188,11 +188,6 @@ class SequenceRelocaliser:
             self.active = False   # give up: the reservoir settles by itself
         return None
 
-    def _near(self, end: int) -> np.ndarray:
-        """The place-code winners within ``spread`` moving ticks of moving tick ``end``."""
-        sp = self.params.spread
-        return self.winners[max(0, end - sp):end + sp + 1]
-
     def match(self, recent: np.ndarray) -> int | None:
         """Index (into the moving ticks) of the exploration tick that ends the stretch
         matching ``recent`` (M, n_inputs), or None when it costs more than a true match
@@ -204,7 +199,8 @@ class SequenceRelocaliser:
         if not cost[b] <= self.max_cost:
             return None   # unlike anything explored
         end = b + M - 1
-        near = np.isin(self.winners[M - 1:], self._near(end))
+        around = self.winners[max(0, end - p.spread):end + p.spread + 1]   # this stretch's
+        near = np.isin(self.winners[M - 1:], around)   # places, on any lap
         rivals = (cost <= p.ratio * cost[b]) & ~near
         return None if rivals.any() else end
 
