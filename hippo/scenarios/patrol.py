@@ -26,8 +26,10 @@ only way between two checkpoints the route runs along it both ways, and a leg go
 third checkpoint where a way round exists (a loop round a ring). Where those paths make no
 loop, ``--route auto`` (the default) takes the loop the exploring wall follower runs round
 the arena instead, if it passes every checkpoint (``two-rooms``: ``hippo.tasks.wall_tour``;
-``--route shortest`` or ``tour`` choose). The robot explores along
-the wall that takes it the way the route runs, and follows that wall on its moves
+``--route shortest`` or ``tour`` choose); so does a loop no wall goes round its way
+(``goal-arena`` clockwise: the checkpoints are then patrolled the other way round). The
+robot explores along the wall that takes it the way the route runs, and follows that wall on
+its moves
 (``hippo.tasks.wall_side``; ``route_winding`` and ``wall_side`` in ``metrics.json``). Laps
 and passes are measured by progress along that route (``hippo.tasks.LapCounter``,
 ``route_passes``), and each phase that counts laps ends at the point of the route farthest

@@ -212,8 +212,14 @@ def wall_tour(arena: Arena, side: int = -1, *, seed: int = 0, max_s: float = 150
     return Route(pts, closed=True)
 
 
+def arena_tour(name: str, side: int = -1) -> Route | None:
+    """:func:`wall_tour` of the built-in arena ``name`` along wall ``side`` (-1 right, +1
+    left; cached: the tour is the arena's, not a run's)."""
+    if side not in (-1, 1):
+        raise ValueError(f"side must be -1 (right) or +1 (left), got {side!r}")
+    return _arena_tour(name, side)
+
+
 @functools.lru_cache(maxsize=16)
-def arena_tour(name: str) -> Route | None:
-    """:func:`wall_tour` of the built-in arena ``name`` (cached: the tour is the arena's, not
-    a run's)."""
-    return wall_tour(arenas.get(name))
+def _arena_tour(name: str, side: int) -> Route | None:
+    return wall_tour(arenas.get(name), side)

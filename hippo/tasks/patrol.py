@@ -10,9 +10,8 @@ by a checkpoint gave.
 - :class:`PatrolPhase` — the phases of the patrol scenarios (their names go into ``run.npz``).
 - :class:`PatrolCourse` — the phases on a :class:`~hippo.tasks.Session`: :meth:`teach`,
   :meth:`patrol`, :meth:`adapt`, :meth:`kidnap`, and the lap bookkeeping behind them.
-- :func:`pass_report` — per checkpoint, from a run's per-tick arrays: the passes during a
-  phase, the stop the robot chose at each (the first one counts), extra and misplaced stops,
-  and the waits against the learned ones.
+- :func:`pass_report`, :func:`patrol_rounds` — what the passes gave (from
+  :mod:`hippo.tasks.patrol_report`).
 """
 
 from __future__ import annotations
@@ -29,7 +28,8 @@ from hippo._checks import check_seed
 from hippo.progress import Progress
 from hippo.sim import arenas
 from hippo.tasks.explore import arena_tour
-from hippo.tasks.routes import LapCounter, Route, lead_from, route_passes
+from hippo.tasks.patrol_report import PASS_RADIUS, pass_report, patrol_rounds
+from hippo.tasks.routes import LapCounter, Route, lead_from
 from hippo.tasks.session import Session
 from hippo.tasks.teaching import lessons_again
 from hippo.types import Mode, StateKind
@@ -51,8 +51,6 @@ ARENA_CHECKPOINTS: dict[str, list[tuple[float, float]]] = {
 }
 #: HIREL's three checkpoint waits (s); with n checkpoints the first n are the defaults
 HIREL_WAITS = [24.1, 19.1, 11.6, 16.0]
-#: a pass by a checkpoint: the robot's progress along the route within this many cm of it
-PASS_RADIUS = 30.0
 #: how a patrol route is built (:func:`patrol_route`)
 ROUTE_KINDS = ("auto", "shortest", "tour")
 #: a wall tour is a patrol's route only if it passes this close to every checkpoint (chosen
@@ -82,27 +80,45 @@ def choose_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
     """``(what it is, the leash route)``: ``"course"``, patrol-course's corridor loop for its
     own checkpoints; else by ``kind``: ``"shortest"``, the shortest paths through the
     checkpoints and back (:meth:`Route.through`, 8 cm clear of walls where it can); ``"tour"``,
-    the exploring wall follower's loop (:func:`hippo.tasks.wall_tour`), within ``TOUR_REACH``
-    cm of every checkpoint; ``"auto"``: the shortest paths if they make a loop
-    (:attr:`Route.winding` not 0), else the tour if it goes round something and passes every
-    checkpoint (two-rooms; a maze's 4,900 cm tour runs out and back too), else the shortest."""
+    a wall follower's loop (:func:`hippo.tasks.wall_tour`, right wall first) within
+    ``TOUR_REACH`` cm of every checkpoint; ``"auto"``: the shortest paths if they make a loop
+    (:attr:`Route.winding` not 0) that one of the arena's two wall tours runs the same way
+    round, else a tour that goes round something and passes every checkpoint, else the
+    shortest. The robot moves along a wall (:func:`hippo.tasks.wall_side`), and in
+    ``goal-arena`` no wall goes round clockwise (the right wall follower turns back at the
+    south nook), so a clockwise route was run backwards (tuning seeds 0-15, learned cells:
+    65 of 149 passes with a stop, against 190 of 254 with the tour, visited the other way).
+    Two-rooms' shortest paths run out and back (a maze's, and its tours, too)."""
     if kind not in ROUTE_KINDS:
         raise ValueError(f"route kind must be one of {', '.join(ROUTE_KINDS)}, got {kind!r}")
     if arena_name == "patrol-course" and [tuple(map(float, c)) for c in checkpoints] == \
             ARENA_CHECKPOINTS["patrol-course"]:
         return "course", Route(arenas.loop_waypoints())
+    tours = [t for t in (arena_tour(arena_name, side) for side in (-1, 1)) if t is not None]
+    route = None
     if kind != "tour":
         route = Route.through(arenas.get(arena_name), checkpoints, clearance=8.0)
-        if kind == "shortest" or route.winding != 0:
+        its_way = any(t.winding == route.winding for t in tours)
+        if kind == "shortest" or (route.winding != 0 and its_way):
             return "shortest", route
-    tour = arena_tour(arena_name)
-    off = [c for c in checkpoints if tour is None or tour.distance(*c) > TOUR_REACH]
-    if not off and (kind == "tour" or tour.winding != 0):  # type: ignore[union-attr]
-        return "tour", tour  # type: ignore[return-value]
-    if kind == "tour":
-        raise ValueError(f"no wall tour of arena {arena_name!r} passes within {TOUR_REACH:g} cm"
-                         f" of checkpoint(s) {', '.join(f'({x:g}, {y:g})' for x, y in off)}")
-    return "shortest", route
+    for tour in tours:
+        if all(tour.distance(*c) <= TOUR_REACH for c in checkpoints) and \
+                (kind == "tour" or tour.winding != 0):
+            return "tour", tour
+    if route is not None:
+        return "shortest", route
+    far = min(([c for c in checkpoints if t.distance(*c) > TOUR_REACH] for t in tours),
+              key=len, default=list(checkpoints))
+    raise ValueError(f"no wall tour of arena {arena_name!r} passes within {TOUR_REACH:g} cm of "
+                     f"checkpoint(s) {', '.join(f'({x:g}, {y:g})' for x, y in far)}")
+
+
+def _home_floor(arena: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The arena's free-floor grid ``(xs, ys, mask)``: cells the robot reaches from the start."""
+    xs, ys, free = arena.free_grid(3.7)
+    parts, _ = ndimage.label(free)
+    return xs, ys, parts == parts[np.argmin(np.abs(xs - arena.start_pose[0])),
+                                  np.argmin(np.abs(ys - arena.start_pose[1]))]
 
 
 def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
@@ -116,16 +132,13 @@ def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
     if len(waits) != len(checkpoints):
         raise ValueError(f"got {len(waits)} waits for {len(checkpoints)} checkpoints; give "
                          "one wait per checkpoint")
-    xs, ys, free = arena.free_grid(3.7)
-    parts, _ = ndimage.label(free)
-    home = parts[np.argmin(np.abs(xs - arena.start_pose[0])),
-                 np.argmin(np.abs(ys - arena.start_pose[1]))]
+    xs, ys, home = _home_floor(arena)
     for x, y in checkpoints:
         if not arena.is_free(x, y, 6.0):
             raise ValueError(f"checkpoint ({x:g}, {y:g}) is not free floor of arena "
                              f"{arena_name!r} ({arena.width:g} x {arena.height:g} cm; a "
                              "checkpoint needs 6 cm clear of every wall)")
-        if parts[np.argmin(np.abs(xs - x)), np.argmin(np.abs(ys - y))] != home:
+        if not home[np.argmin(np.abs(xs - x)), np.argmin(np.abs(ys - y))]:
             raise ValueError(f"checkpoint ({x:g}, {y:g}) cannot be reached from the start of "
                              f"arena {arena_name!r} (it lies inside walls)")
     route = patrol_route(arena_name, checkpoints, kind)
@@ -149,12 +162,9 @@ def random_patrol(arena_name: str, n: int, seed: int, *, waits: tuple[float, flo
         raise ValueError(f"n must be 2 to 4 checkpoints, got {n!r}")
     arena = arenas.get(arena_name)
     rng = np.random.default_rng(check_seed("seed", seed))
-    xs, ys, free = arena.free_grid(3.7)
-    parts, _ = ndimage.label(free)
-    home = parts[np.argmin(np.abs(xs - arena.start_pose[0])),
-                 np.argmin(np.abs(ys - arena.start_pose[1]))]
+    xs, ys, home = _home_floor(arena)
     _, _, roomy = arena.free_grid(clearance)
-    i, j = np.nonzero(roomy & (parts == home))
+    i, j = np.nonzero(roomy & home)
     floor = np.column_stack([xs[i], ys[j]])
     for _ in range(tries):
         pick = floor[rng.choice(len(floor), size=n, replace=False)]
@@ -170,55 +180,6 @@ def random_patrol(arena_name: str, n: int, seed: int, *, waits: tuple[float, flo
         return cps, w
     raise ValueError(f"no {n} checkpoints 40 cm apart along a route found in arena "
                      f"{arena_name!r} after {tries} tries")
-
-
-def pass_report(arrays: dict, route: Route, checkpoints: Sequence[Sequence[float]],
-                all_stops: list[dict], learned: Sequence[float | None], *, phase: int,
-                span: tuple[int, int] | None = None) -> list[dict]:
-    """Per checkpoint ``k``: its passes during ``phase`` (within ``span`` = ``[i0, i1)`` of the
-    arrays, if given), the first stop the robot chose for drive ``k`` in each pass
-    (``reproduced_waits_s``), further stops there for it (``extra_stops``), stops there for
-    another drive (``misplaced_stops``), and the waits' relative differences from
-    ``learned[k]`` (``rel_errors``)."""
-    lo, hi = span if span is not None else (0, len(arrays["t"]))
-    rows = []
-    for k, cp in enumerate(checkpoints):
-        runs = [(a, b) for a, b in route_passes(arrays, route, cp, phase=phase,
-                                                radius=PASS_RADIUS) if lo <= a and b <= hi]
-        here = [st for st in all_stops if st["checkpoint"] == k and st["phase"] == phase
-                and lo <= st["i0"] < hi]
-        per_pass = [[st["duration"] for st in here if a <= st["i0"] < b and st["drive"] == k]
-                    for a, b in runs]
-        rep = [d[0] for d in per_pass if d]
-        w = learned[k]
-        err = [abs(r - w) / w for r in rep] if w else []
-        rows.append({"passes": len(runs), "stops_made": len(rep), "reproduced_waits_s": rep,
-                     "extra_stops": sum(max(len(d) - 1, 0) for d in per_pass),
-                     "misplaced_stops": sum(1 for st in here if st["drive"] != k),
-                     "rel_errors": err})
-    return rows
-
-
-def patrol_rounds(stop_list: Sequence[dict], n: int, *, phase: int) -> tuple[int, int, int]:
-    """The patrol measured without a route: the stops made during ``phase`` (from
-    :func:`hippo.tasks.stops`) in the order made; a stop *serves* its checkpoint when the
-    robot made it for that checkpoint's drive and the checkpoint was not the last one served;
-    a *round* is done each time every one of the ``n`` checkpoints has been served since the
-    last round. Returns ``(rounds, stops serving, stops made)``. HIREL's map sets no order
-    between checkpoints: a robot that serves them in another order than the route's, or
-    shuttles along a corridor the route runs both ways, still patrols (progress along such a
-    route cannot tell out from back)."""
-    here = sorted((st for st in stop_list if st["phase"] == phase), key=lambda st: st["i0"])
-    rounds, serving, last, seen = 0, 0, None, set()
-    for st in here:
-        k = st["checkpoint"]
-        if st["drive"] != k or k == last:
-            continue
-        serving, last = serving + 1, k
-        seen.add(k)
-        if len(seen) == n:
-            rounds, seen = rounds + 1, set()
-    return rounds, serving, len(here)
 
 
 class PatrolCourse:

@@ -8,6 +8,7 @@ from hippo.sim import arenas
 from hippo.tasks import LapCounter, Route
 from hippo.tasks.patrol import (
     ARENA_CHECKPOINTS,
+    TOUR_REACH,
     check_patrol,
     patrol_rounds,
     patrol_route,
@@ -310,6 +311,35 @@ def test_auto_routes_take_the_tour_where_the_shortest_paths_run_out_and_back():
         patrol_route("patrol-course", [(125.0, 60.0), (15.0, 60.0)], "tour")
     with pytest.raises(ValueError, match="route kind"):
         patrol_route("two-rooms", cps, "scenic")
+
+
+def test_auto_routes_run_the_way_round_a_wall_follower_can():
+    from hippo.tasks.explore import arena_tour
+    from hippo.tasks.patrol import choose_route
+
+    # goal-arena: no wall goes round clockwise (the right wall follower turns back at the
+    # south nook: its tour runs out and back; the left one runs the inner ring
+    # counter-clockwise)
+    assert arena_tour("goal-arena", -1).winding == 0
+    inner = arena_tour("goal-arena", 1)
+    assert inner.winding == 1 and arena_tour("goal-arena", side=1) is inner
+    cw = [(13.0, 85.0), (133.0, 93.0)]          # (tuning seed 3's checkpoints)
+    kind, shortest = choose_route("goal-arena", cw, "shortest")
+    assert kind == "shortest" and shortest.winding == -1
+    # so auto takes the counter-clockwise tour: the same checkpoints, the other way round
+    kind, auto = choose_route("goal-arena", cw)
+    assert kind == "tour" and auto is inner
+    assert all(auto.distance(*c) <= TOUR_REACH for c in cw)
+    # a counter-clockwise loop stays the shortest paths
+    kind, ccw = choose_route("goal-arena", cw[::-1])
+    assert kind == "shortest" and ccw.winding == 1
+    # on patrol-course either wall goes round: a clockwise route stays the shortest paths
+    assert arena_tour("patrol-course", -1).winding == 1
+    assert arena_tour("patrol-course", 1).winding == -1
+    kind, ring = choose_route("patrol-course", [(140.0, 56.0), (80.0, 11.0), (50.0, 105.0)])
+    assert kind == "shortest" and ring.winding == -1
+    with pytest.raises(ValueError, match="side"):
+        arena_tour("goal-arena", 0)
 
 
 def test_the_lesson_holds_the_robot_level_with_a_checkpoint_across_the_corridor():
