@@ -375,7 +375,12 @@ class Decider(SoftRecognition, RunupRules):
         checkpoint's drive at the earlier one, and it never had a stop of its own (random
         checkpoints on patrol-course, tuning seeds 16 and 25)."""
         b = self.b
-        linked = [name for name in b.drives.names if wait in b.drives.links(name)]
+        return self._by_runup([name for name in b.drives.names if wait in b.drives.links(name)])
+
+    def _by_runup(self, linked: list[str]) -> list[str]:
+        """Of the drives ``linked`` to one stop's wait, the one the run-ups say the stop is
+        due for (see :meth:`_served_by`); all of them if none is."""
+        b = self.b
         if len(linked) < 2 or b.wait_ended_at is None or b.last_wait_drive is None:
             return linked
         # along the taught order from the last wait, adding up the run-ups: the stop whose
@@ -415,7 +420,8 @@ class Decider(SoftRecognition, RunupRules):
         return (p.proprio_ticks + 2) * p.dt
 
     def wait_drive(self) -> int:
-        """Index of the drive the robot is waiting or stopping for (-1: none)."""
+        """Index of the drive the robot is waiting or stopping for (-1: none): of the drives
+        linked to the stop's wait, the one :meth:`_served_by` will serve."""
         b = self.b
         cur = self._waiting_on if self.mode == Mode.WAIT else (
             self.current if self.mode == Mode.APPROACH else None)
@@ -425,8 +431,5 @@ class Decider(SoftRecognition, RunupRules):
             nxt = b.graph.outgoing(cur[1]) if b.graph.has_state(cur[1]) else []
         else:
             nxt = [cur]
-        for i, name in enumerate(b.drives.names):
-            links = b.drives.links(name)
-            if any(t in links for t in nxt):
-                return i
-        return -1
+        linked = [n for n in b.drives.names if any(t in b.drives.links(n) for t in nxt)]
+        return b.drives.names.index(self._by_runup(linked)[0]) if linked else -1

@@ -550,6 +550,34 @@ def test_a_stop_that_two_drives_share_serves_the_one_its_run_up_says_was_due():
     assert served(w) == ["a", "c"]               # b is due here, and W is not b's: both
 
 
+def test_the_drive_a_shared_stop_is_made_for_is_the_one_its_run_up_says_was_due():
+    # the drive the robot waits for (logged as wait_drive, and whose run-up gates the stop)
+    # follows the rule that serves the wait (the test above): it was the first drive linked,
+    # so a stop made for c where a and c share a place was logged, and gated, as a's
+    # (two-rooms, tuning seed 5: 10 stops logged as misplaced; patrol-course seed 16: 5)
+    brain = Brain(Stub(), drives={n: DriveParams() for n in "abc"},
+                  params=BrainParams(runup_window=20.0))
+    layer = brain.layer
+    place = layer.recruit("place", 0)
+    w = (layer.recruit("still", context=place), layer.recruit("moving", context=place))
+    brain.drives.link("a", w)
+    brain.drives.link("c", w)
+    brain.decide.mode, brain.decide._waiting_on = Mode.WAIT, w
+    assert brain.decide.wait_drive() == 0        # no anchor yet: the first linked, as before
+    brain.runups = {"b": 50.0, "c": 70.0, "a": 150.0}
+    brain.runup_after = {"b": "a", "c": "b", "a": "c"}
+    brain.wait_ended_at, brain.last_wait_drive = 0.0, "b"
+    brain.odometer = 75.0
+    assert brain.decide.wait_drive() == 2        # c's stop, 70 cm after b's wait
+    assert brain.snapshot()["wait_drive"] == 2
+    brain.odometer = 215.0
+    assert brain.decide.wait_drive() == 0        # c passed without a stop, a 150 cm on
+    brain.odometer = 120.0
+    assert brain.decide.wait_drive() == 0        # neither is due: the first linked
+    brain.decide.mode = Mode.MOVE
+    assert brain.decide.wait_drive() == -1       # not stopping
+
+
 def test_a_new_move_infers_its_way_back_which_experience_confirms_or_forgets():
     brain, run = make(infer_reverse=True)
     for where in "BAC":                      # B -> A -> C, heading 0 (odometry: forward)
