@@ -94,13 +94,15 @@ def choose_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
     if arena_name == "patrol-course" and [tuple(map(float, c)) for c in checkpoints] == \
             ARENA_CHECKPOINTS["patrol-course"]:
         return "course", Route(arenas.loop_waypoints())
-    tours = [t for t in (arena_tour(arena_name, side) for side in (-1, 1)) if t is not None]
     route = None
     if kind != "tour":
         route = Route.through(arenas.get(arena_name), checkpoints, clearance=8.0)
-        its_way = any(t.winding == route.winding for t in tours)
-        if kind == "shortest" or (route.winding != 0 and its_way):
+        if kind == "shortest":
             return "shortest", route
+    tours = [t for t in (arena_tour(arena_name, side) for side in (-1, 1)) if t is not None]
+    if route is not None and route.winding != 0 and any(t.winding == route.winding
+                                                        for t in tours):
+        return "shortest", route
     for tour in tours:
         if all(tour.distance(*c) <= TOUR_REACH for c in checkpoints) and \
                 (kind == "tour" or tour.winding != 0):
