@@ -250,7 +250,16 @@ class PatrolCourse:
         before it: every taught stop and run-up counts from there. (Within 20 cm, tuning seed
         25's (131, 41), across the corridor from the robot's wall, was never reached; the
         lesson led it round again and taught a run-up a lap too long.)"""
-        return self.loop.reached(*self.s.truth.pose[:2], checkpoint, radius=PASS_RADIUS)
+        return self.loop.reached(*self.s.truth.pose[:2], checkpoint, radius=PASS_RADIUS,
+                                 from_behind=True)
+
+    def set_off_for(self, checkpoint: Sequence[float]) -> None:
+        """From here the robot is to come to ``checkpoint`` going the route's way round:
+        :meth:`reached` holds it there once it has come up behind it, not when it comes to it
+        the wrong way round (held-out seed 241: after checkpoint 2's lesson the robot turned
+        back, came to checkpoint 3 from beyond, and was held 26-30 cm from it on a place it
+        never passes going the right way)."""
+        self.loop.forget(checkpoint)
 
     def learned_waits(self) -> list[float | None]:
         """Per checkpoint, the median learned delay of the transitions its drive is linked to
@@ -301,6 +310,7 @@ class PatrolCourse:
                 agent.drives.inhibit(self.names[k])
                 self.laps()
                 ahead = (self.route.progress(*c) - self.loop.progress) % self.route.length  # type: ignore[operator]
+                self.set_off_for(c)
                 s.run(int((60.0 + 2.0 * ahead / 5.0) / dt),
                       until=lambda o, c=c: self.reached(c))
                 alone = self.reached(c)
@@ -347,9 +357,13 @@ class PatrolCourse:
         # lasts `longer` s instead of the learned wait (if it passes without stopping, it is
         # held where the checkpoint was taught, as in teaching)
         s.phase, s.trial = PatrolPhase.ADAPTATION, 0
-        s.run(int(400 / dt), until=lambda o: self.near(c1, 30.0) and (
-            self.state_kind() == StateKind.STILL or agent.mode in (Mode.APPROACH, Mode.WAIT)
-            or self.reached(c1)))
+        self.set_off_for(c1)
+
+        def at_c1(o: Any) -> bool:
+            there = self.reached(c1)   # asked every tick: it follows the approach
+            return self.near(c1, 30.0) and (there or self.state_kind() == StateKind.STILL
+                                             or agent.mode in (Mode.APPROACH, Mode.WAIT))
+        s.run(int(400 / dt), until=at_c1)
         if agent.mode == Mode.APPROACH:  # about to stop: let it
             s.run(int(20 / dt), until=lambda o: agent.mode != Mode.APPROACH)
         s.block(longer, extra=10.0)

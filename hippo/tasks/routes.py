@@ -257,6 +257,7 @@ class LapCounter:
         self._s: float | None = None
         self.turns = 0.0
         self.start: float | None = None
+        self._behind: set[tuple[float, float]] = set()   # points the robot came up behind
 
     @property
     def progress(self) -> float | None:
@@ -282,17 +283,34 @@ class LapCounter:
         self._s = s
         return self.turns
 
-    def reached(self, x: float, y: float, point: Sequence[float], radius: float = 20.0) -> bool:
+    def reached(self, x: float, y: float, point: Sequence[float], radius: float = 20.0, *,
+                from_behind: bool = False) -> bool:
         """Update with ``(x, y)``; is the robot at ``point`` (a checkpoint): within ``radius`` cm
         of it, and its progress along the route at or past the point's? A teacher who holds the
         robot *at* a checkpoint uses it: one who holds it as soon as it comes within some
-        radius teaches a stop that far before the checkpoint, and every run-up from there."""
+        radius teaches a stop that far before the checkpoint, and every run-up from there.
+
+        With ``from_behind`` it must also have come there going the route's way: since it was
+        last more than ``radius`` past the point along the route (or since :meth:`forget`), an
+        update found it behind the point. A robot that drives the wrong way round comes to the
+        point from beyond it, "past" it all the way."""
+        check_positive("radius", radius)
         self.update(x, y)
-        if math.dist((x, y), point) >= check_positive("radius", radius):
-            return False
         L = self.route.length
         behind = (self.route.progress(*point) - self._s + L / 2) % L - L / 2  # type: ignore[operator]
-        return behind <= 0.0
+        key = (float(point[0]), float(point[1]))
+        if behind > 0.0:
+            self._behind.add(key)
+        elif behind < -radius:
+            self._behind.discard(key)
+        if math.dist((x, y), point) >= radius:
+            return False
+        return behind <= 0.0 and (key in self._behind or not from_behind)
+
+    def forget(self, point: Sequence[float]) -> None:
+        """Forget that the robot was behind ``point`` (:meth:`reached` with ``from_behind``):
+        from here it has to come to it anew."""
+        self._behind.discard((float(point[0]), float(point[1])))
 
 
 class AngleLaps:

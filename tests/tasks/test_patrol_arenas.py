@@ -231,6 +231,41 @@ def test_the_lesson_blocks_the_robot_at_a_checkpoint_not_before_it():
     assert not course.reached(cps[1])
 
 
+def test_the_lesson_holds_a_robot_that_comes_the_wrong_way_round_only_once_it_turns():
+    # held-out seed 241: after one lesson the robot turned back and came to the next
+    # checkpoint from beyond it, "past" it from the start; it was held 26-30 cm away, on a
+    # place it never passes going the route's way
+    from types import SimpleNamespace
+
+    from hippo.tasks.patrol import PatrolCourse
+
+    cps = ARENA_CHECKPOINTS["patrol-course"]
+    route = patrol_route("patrol-course", cps)
+    pose = [0.0, 0.0, 0.0]
+    s = SimpleNamespace(agent=None, world=SimpleNamespace(dt=0.2),
+                        truth=SimpleNamespace(pose=pose))
+    course = PatrolCourse(s, route, cps, ["a", "b", "c"])
+    s_cp = route.progress(*cps[1])
+
+    def at(ds: float) -> bool:
+        pose[:] = list(route.at(s_cp + ds))
+        return course.reached(cps[1])
+
+    at(-100.0)
+    course.set_off_for(cps[1])                     # the lesson starts 100 cm before it
+    at(-60.0)
+    # ... the robot turns back, goes round the wrong way and comes to it from beyond
+    back = [at(ds) for ds in np.arange(-60.0, -route.length + 40.0, -2.0)]
+    beyond = [at(ds) for ds in (40.0, 20.0, 10.0, 5.0, 1.0, -1.0, -10.0)]
+    assert not any(back) and not any(beyond)
+    # it turns and drives the route's way: held once it is level with the checkpoint
+    ahead = [at(ds) for ds in (-5.0, -1.0, 0.5, 3.0)]
+    assert ahead == [False, False, True, True]
+    # a new lesson from here (it has just passed it): a lap on, not here
+    course.set_off_for(cps[1])
+    assert not at(4.0) and not at(10.0)
+
+
 def test_a_robot_explores_along_the_wall_that_takes_it_the_way_its_route_runs():
     from hippo.motor import Motor, MotorParams
     from hippo.sim import World

@@ -222,6 +222,35 @@ def test_a_lap_counter_says_the_robot_reached_a_point_only_at_or_past_it():
         laps.reached(60.0, 0.0, (60.0, 0.0), radius=0.0)
 
 
+def test_from_behind_a_point_is_reached_only_by_a_robot_that_comes_up_to_it_the_routes_way():
+    r = Route([(0, 0), (100, 0), (100, 50), (0, 50)])     # 300 cm, counter-clockwise
+    laps = LapCounter(r)
+    p = (60.0, 0.0)
+
+    def drive(points, **kw):
+        return [laps.reached(x, y, p, radius=20.0, **kw) for x, y in points]
+
+    # from 30 backwards round the loop to 70, then on to 58: it comes to 60 from beyond
+    back = [(x, 0.0) for x in range(28, -1, -4)] + [(0.0, y) for y in range(4, 51, 4)]
+    back += [(x, 50.0) for x in range(4, 101, 4)] + [(100.0, y) for y in range(46, -1, -4)]
+    laps.update(30.0, 0.0)
+    assert not any(drive(back, from_behind=True))
+    assert drive([(70.0, 0.0), (64.0, 0.0)], from_behind=True) == [False, False]
+    assert laps.reached(64.0, 0.0, p, radius=20.0)          # without from_behind: "past" it
+    # on backwards past it, then forward again: behind it now, reached at it
+    assert drive([(59.0, 0.0), (56.0, 0.0), (58.0, 0.0), (60.0, 0.0), (63.0, 0.0)],
+                 from_behind=True) == [False, False, False, True, True]
+    # forget: from here (3 cm past it) it must come round again
+    laps.forget(p)
+    assert drive([(66.0, 0.0), (75.0, 0.0), (90.0, 0.0)], from_behind=True) == [False] * 3
+    fwd = [(100.0, y) for y in range(4, 50, 4)] + [(x, 50.0) for x in range(96, -1, -4)]
+    fwd += [(0.0, y) for y in range(46, -1, -4)] + [(x, 0.0) for x in range(4, 60, 4)]
+    assert not any(drive(fwd, from_behind=True))             # up to 56, behind it
+    assert drive([(61.0, 0.0)], from_behind=True) == [True]
+    # more than a radius past it, then back to it: not from behind
+    assert drive([(85.0, 0.0), (70.0, 0.0), (62.0, 0.0)], from_behind=True) == [False] * 3
+
+
 def test_winding_tells_a_loop_round_from_a_shuttle():
     # the shoelace area of a 100 cm square is 10,000 cm^2, positive counter-clockwise
     ccw, cw = Route(SQUARE), Route(SQUARE[::-1])
