@@ -73,15 +73,20 @@ def test_same_radius_on_any_thread_count():
     assert r1 == r2
 
 
-def _as_before(res: Reservoir, p: ReservoirParams) -> bool:
+def _as_before(res: Reservoir, p: ReservoirParams, ulps: int = 0) -> bool:
     """The float32 weights (the run's and the step's) are bit for bit those of the dense
-    scaling on 1 or on 2 BLAS threads (which differ from each other at seed 118)."""
+    scaling on 1 or on 2 BLAS threads (which differ from each other at seed 118), or, with
+    ``ulps``, within that many float32 ulps of them."""
     a = expand_leak(p.leak, p.n_neurons)
+
+    def same(x: np.ndarray, y: np.ndarray) -> bool:
+        return np.array_equal(x, y) if ulps == 0 else bool(np.all(
+            np.abs(x - y) <= ulps * np.spacing(np.maximum(np.abs(x), np.abs(y)))))
+
     for threads in (1, 2):
         W = _dense_scaled(p, threads)
         M = np.vstack([res.W_in.T * a, W.T * a + np.diag(1.0 - a)]).astype(np.float32)
-        if np.array_equal(res._W_res_run, W.astype(np.float32)) and np.array_equal(
-                res._mirror.M, M):
+        if same(res._W_res_run, W.astype(np.float32)) and same(res._mirror.M, M):
             return True
     return False
 
@@ -96,7 +101,12 @@ def test_smc09_reservoir_runs_as_before():
 
 @pytest.mark.slow
 def test_reported_seeds_run_as_before():
-    # the tuning (0-9) and held-out (100-119) reservoirs of two-rooms (N = 600)
+    # the tuning (0-9) and held-out (100-119) reservoirs of two-rooms (N = 600): bit for bit
+    # on the machines the figures were measured on; within a float32 ulp where LAPACK rounds
+    # the dense radius otherwise (an AMD EPYC, 2026-11-26: seed 118)
     for seed in [*range(10), *range(100, 120)]:
         p = ReservoirParams.smc09(seed=seed)
-        assert _as_before(Reservoir(p), p), seed
+        assert _as_before(Reservoir(p), p, ulps=1), seed
+    p = ReservoirParams.smc09(seed=0)
+    other = Reservoir(ReservoirParams.smc09(seed=0, spectral_radius=0.98))
+    assert not _as_before(other, p, ulps=1)   # a reservoir scaled otherwise is not as before
