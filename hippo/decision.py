@@ -258,6 +258,11 @@ class Decider(SoftRecognition, RunupRules):
             self.mode, h = Mode.MOVE, self._direction(tr)
             self.heading = float(b.pi.heading if h is None else h)
         elif b.kind(tr[1]) == StateKind.STILL and b.p.approach:
+            if self._untimely(tr):   # an alias of a stop farther on: drive on, as it goes
+                if not keep_heading:
+                    return self.choose(state, exclude_wait=True)
+                self.current, self.mode = None, Mode.MOVE
+                return
             self.mode = Mode.APPROACH   # keep going until the learned time-to-stop is over
             self._entry_timed = True
             self._approach_t0 = b.entered_at

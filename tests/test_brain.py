@@ -578,6 +578,63 @@ def test_the_drive_a_shared_stop_is_made_for_is_the_one_its_run_up_says_was_due(
     assert brain.decide.wait_drive() == -1       # not stopping
 
 
+def test_a_place_win_for_a_stop_not_due_while_another_is_due_just_ahead_drives_on():
+    # a -> b -> c -> a, run-ups b 150 cm after a, c 150 after b, a 150 after c; the last wait
+    # was b's. A place of a's stop wins 130 cm on (an alias: held-out seed 101, 18 h, the
+    # south corridor's place in the north one), 20 cm before c is due: the robot drives on
+    brain = Brain(Stub(), drives={n: DriveParams() for n in "abc"},
+                  params=BrainParams(runup_window=100.0))
+    layer, g, decide = brain.layer, brain.graph, brain.decide
+    stops = {}
+    for i, n in enumerate("abc"):
+        place = layer.recruit("place", i)
+        still = layer.recruit("still", context=place)
+        moving = layer.recruit("moving", context=place)
+        g.add_transition(place, still, Action.wait(), 3.0)
+        g.add_transition(still, moving, Action.wait(), 10.0)
+        brain.drives.link(n, (still, moving))
+        brain.drives.set_level(n, 1.0)
+        stops[n] = (place, still)
+    brain.runups = {"a": 150.0, "b": 150.0, "c": 150.0}
+    brain.runup_after = {"b": "a", "c": "b", "a": "c"}
+    brain.wait_ended_at, brain.last_wait_drive = 0.0, "b"
+    untimely = decide._untimely
+    brain.odometer = 130.0
+    assert untimely(stops["a"])                  # a due at 300, c 20 cm ahead
+    assert not untimely(stops["c"])              # c's own place: its stop
+    brain.odometer = 40.0
+    assert not untimely(stops["a"])              # c due 110 cm ahead: too far to say
+    brain.odometer = 170.0
+    assert not untimely(stops["a"])              # c's point passed: c missed, a may come
+    brain.odometer = 290.0
+    assert not untimely(stops["a"])              # a due here
+    brain.odometer = 560.0
+    assert not untimely(stops["a"])              # c due 40 cm on a lap later, but the run
+    #   since the wait is past the longest run-up + runup_window: stale, it bounds nothing
+    brain.odometer = 130.0
+    brain.drives.inhibit("c")
+    assert not untimely(stops["a"])              # c is held: nothing is due ahead
+    brain.drives.release("c")
+    brain.drives.set_level("c", 1.0)
+    assert untimely(stops["a"])
+    brain.wait_ended_at = None                   # no anchor (after a lift): no bound
+    assert not untimely(stops["a"])
+    brain.wait_ended_at = 0.0
+    keep = brain.p
+    brain.p = dataclasses.replace(keep, due_first=False)
+    assert not untimely(stops["a"])              # due_first off: the place wins as before
+    brain.p = keep
+    # in choose(): entering a's place there, the robot does not approach a's stop; it drives
+    # on as it goes (a move out of the alias, learned elsewhere, may turn it round: seed 101)
+    brain.state = stops["a"][0]
+    decide.mode, decide.heading = Mode.MOVE, 0.7
+    decide.choose()
+    assert decide.mode == Mode.MOVE and decide.current is None and decide.heading == 0.7
+    brain.odometer = 290.0
+    decide.choose()
+    assert decide.mode == Mode.APPROACH and decide.current == stops["a"]
+
+
 def test_a_new_move_infers_its_way_back_which_experience_confirms_or_forgets():
     brain, run = make(infer_reverse=True)
     for where in "BAC":                      # B -> A -> C, heading 0 (odometry: forward)
