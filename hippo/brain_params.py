@@ -127,8 +127,10 @@ class BrainParams:
         won 20 cm before checkpoint 3 was due; the robot drove past checkpoint 3, stopped
         160 cm early for checkpoint 1, and every run-up after counted from there), 1 with
         it. Only within the first leg after a wait (the anchor not stale): later, after a
-        missed stop or a turn back, the run says too little (tuning seed 5, 18 h). Chosen on
-        that seed (looked at) and tuning seeds: see the README.
+        missed stop or a turn back, the run says too little (tuning seed 5, 18 h). **Off by
+        default**: built on seed 101 (looked at), it did not hold on fresh held-out seeds
+        (18 h, 105-109: 0, 6, 0, 0, 20 failures with it, 7 of them stuck; 0, 6, 0, 0, 1
+        without). See the README.
     stop_timeout: a stop whose stillness the robot has not perceived ``stop_timeout`` s after
         the proprioceptive debounce (:attr:`hippo.decision.Decider.still_grace`) is given up,
         serving no drive, and the robot explores: a robot that stands in another stop's
@@ -189,7 +191,7 @@ class BrainParams:
     runup_stop: float = 10.0
     stop_timeout: float = 2.0
     runup_hops: int = 1
-    due_first: bool = True
+    due_first: bool = False
     release_distance: float = 60.0
     forget: float = 1.0
     infer_reverse: bool = False

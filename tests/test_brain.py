@@ -582,8 +582,9 @@ def test_a_place_win_for_a_stop_not_due_while_another_is_due_just_ahead_drives_o
     # a -> b -> c -> a, run-ups b 150 cm after a, c 150 after b, a 150 after c; the last wait
     # was b's. A place of a's stop wins 130 cm on (an alias: held-out seed 101, 18 h, the
     # south corridor's place in the north one), 20 cm before c is due: the robot drives on
+    assert not BrainParams().due_first            # an option, off by default
     brain = Brain(Stub(), drives={n: DriveParams() for n in "abc"},
-                  params=BrainParams(runup_window=100.0))
+                  params=BrainParams(runup_window=100.0, due_first=True))
     layer, g, decide = brain.layer, brain.graph, brain.decide
     stops = {}
     for i, n in enumerate("abc"):
