@@ -270,13 +270,11 @@ class RunupRules:
         """Is drive ``name``'s stop due at most ``runup_window`` cm ahead of the robot (the next
         point of :meth:`_due_walk` at or past its run since the last wait)? A stop due behind
         it was missed; one ahead is still to come."""
-        walk = self._due_walk(name)
+        walk = self._walked(name)
         if walk is None:
             return False
-        due, lap, closed = walk
-        b = self.b
-        ran, window = b.odometer - b.wait_ended_at, b.p.runup_window
-        k = max(0, math.ceil((ran - due) / lap)) if closed and lap > 2 * window else 0
+        due, lap, ran, window = walk
+        k = max(0, math.ceil((ran - due) / lap)) if lap else 0
         return 0.0 <= due + k * lap - ran <= window
 
     def _due(self, name: str) -> bool:
@@ -286,14 +284,25 @@ class RunupRules:
         ``s``, or ``s + k L`` when it closed a lap; see :meth:`_not_due`, which without a
         closed lap sets no bound past ``s``)? Companion places are learned and used only
         then (:mod:`hippo.soft_recognition`)."""
-        walk = self._due_walk(name)
+        walk = self._walked(name)
         if walk is None:
             return False
+        due, lap, ran, window = walk
+        k = max(0, round((ran - due) / lap)) if lap else 0
+        return abs(ran - (due + k * lap)) <= window
+
+    def _walked(self, name: str) -> tuple[float, float, float, float] | None:
+        """``(s, L, ran, window)``: :meth:`_due_walk`'s first point ``s``, its lap ``L`` (0
+        unless it closed one longer than 2 ``runup_window``: then the stop is due again every
+        ``L``), the run since the last wait and ``runup_window``; None: no bound."""
+        walk = self._due_walk(name)
+        if walk is None:
+            return None
         due, lap, closed = walk
         b = self.b
-        ran, window = b.odometer - b.wait_ended_at, b.p.runup_window
-        k = max(0, round((ran - due) / lap)) if closed and lap > 2 * window else 0
-        return abs(ran - (due + k * lap)) <= window
+        window = b.p.runup_window
+        return due, (lap if closed and lap > 2 * window else 0.0), \
+            b.odometer - b.wait_ended_at, window
 
     def _due_walk(self, name: str) -> tuple[float, float, bool] | None:
         """The walk of :meth:`_not_due`: ``(s, L, closed)``, the distance from the last wait at

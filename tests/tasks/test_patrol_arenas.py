@@ -206,7 +206,9 @@ def test_patrol_rounds_count_every_checkpoint_served_in_any_order():
     assert patrol_rounds(made([(0, 0), (1, 1)], phase=3), 2, phase=4) == (0, 0, 0)
 
 
-def test_the_lesson_blocks_the_robot_at_a_checkpoint_not_before_it():
+def _course_on_patrol_course() -> tuple:
+    """A PatrolCourse on patrol-course's own checkpoints whose robot is put at ``pose``: no
+    world, only the truth the teacher reads. Returns (course, route, checkpoints, pose)."""
     from types import SimpleNamespace
 
     from hippo.tasks.patrol import PatrolCourse
@@ -216,7 +218,11 @@ def test_the_lesson_blocks_the_robot_at_a_checkpoint_not_before_it():
     pose = [0.0, 0.0, 0.0]
     s = SimpleNamespace(agent=None, world=SimpleNamespace(dt=0.2),
                         truth=SimpleNamespace(pose=pose))
-    course = PatrolCourse(s, route, cps, ["a", "b", "c"])
+    return PatrolCourse(s, route, cps, ["a", "b", "c"]), route, cps, pose
+
+
+def test_the_lesson_blocks_the_robot_at_a_checkpoint_not_before_it():
+    course, route, cps, pose = _course_on_patrol_course()
     s_cp = route.progress(*cps[1])
     verdicts = []
     for ds in (-40.0, -15.0, -5.0, -1.0, 1.0, 6.0, 15.0):   # along the route, as it drives
@@ -235,16 +241,7 @@ def test_the_lesson_holds_a_robot_that_comes_the_wrong_way_round_only_once_it_tu
     # held-out seed 241: after one lesson the robot turned back and came to the next
     # checkpoint from beyond it, "past" it from the start; it was held 26-30 cm away, on a
     # place it never passes going the route's way
-    from types import SimpleNamespace
-
-    from hippo.tasks.patrol import PatrolCourse
-
-    cps = ARENA_CHECKPOINTS["patrol-course"]
-    route = patrol_route("patrol-course", cps)
-    pose = [0.0, 0.0, 0.0]
-    s = SimpleNamespace(agent=None, world=SimpleNamespace(dt=0.2),
-                        truth=SimpleNamespace(pose=pose))
-    course = PatrolCourse(s, route, cps, ["a", "b", "c"])
+    course, route, cps, pose = _course_on_patrol_course()
     s_cp = route.progress(*cps[1])
 
     def at(ds: float) -> bool:
