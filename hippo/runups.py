@@ -234,15 +234,13 @@ class RunupRules:
         seed 1), and one coactive at checkpoint 1 for checkpoint 3, missed 100 cm before, made
         that stop there, and the robot set off the wrong way round from it (tuning seed 1,
         18 h)."""
-        walk = self._due_walk(name)
+        walk = self._walked(name)
         if walk is None:
             return False
-        b = self.b
-        due, lap, closed = walk
-        ran, window = b.odometer - b.wait_ended_at, b.p.runup_window
+        due, lap, ran, window = walk
         if ran < due - window:
             return True
-        if not closed or lap <= 2 * window:   # no closed lap: no bound past the first point
+        if not lap:   # no closed lap: no bound past the first point
             return False
         k = round((ran - due) / lap)
         return abs(ran - (due + k * lap)) > window
