@@ -33,7 +33,8 @@ import numpy as np
 import scipy.linalg.blas as sblas
 from threadpoolctl import threadpool_info, threadpool_limits
 
-from hippo.perception.reservoir import Reservoir, ReservoirParams
+from hippo.perception.reservoir import Reservoir
+from hippo.perception.reservoir_params import ReservoirParams
 
 HERE = Path(__file__).resolve().parent
 

@@ -22,10 +22,10 @@ import numpy as np
 
 from hippo.perception import RCSFAICA, FastICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
-from hippo.perception.ica import ICAParams
+from hippo.perception.ica_params import ICAParams
 from hippo.scenarios._common import parse_leak, parse_seeds
+from hippo.scenarios._two_rooms_recordings import _recordings
 from hippo.scenarios._two_rooms_report import _room_masks
-from hippo.scenarios.two_rooms import _recordings
 from hippo.sim import arenas
 
 

@@ -32,7 +32,7 @@ from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
 from hippo.types import Mode, Observation
 
 if TYPE_CHECKING:
-    from hippo.brain import Tick
+    from hippo.ticks import Tick
 
 __all__ = ["Motor", "MotorCommand", "MotorParams"]
 

@@ -25,10 +25,13 @@ from hippo.cognitive_map.planner import Planner, PlannerParams, propagate
 from hippo.io import CorruptFileError
 from hippo.motor import MotorParams
 from hippo.perception import RCSFAICA
-from hippo.perception.ica import FastICA, ICAParams
-from hippo.perception.place_cells import InputRangeWarning, RCSFAICAParams
+from hippo.perception.ica import FastICA
+from hippo.perception.ica_params import ICAParams
+from hippo.perception.place_cell_inputs import InputRangeWarning
+from hippo.perception.place_cells import RCSFAICAParams
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
-from hippo.perception.reservoir import Reservoir, ReservoirParams
+from hippo.perception.reservoir import Reservoir
+from hippo.perception.reservoir_params import ReservoirParams
 from hippo.perception.sfa import SFA, SFAParams
 from hippo.perception.states import StateLayer, StateLayerParams
 from hippo.sim import World, arenas

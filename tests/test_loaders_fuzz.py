@@ -29,7 +29,8 @@ from hippo.io import CorruptFileError
 from hippo.perception import RCSFAICA
 from hippo.perception.ica import FastICA
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
-from hippo.perception.reservoir import Reservoir, ReservoirParams
+from hippo.perception.reservoir import Reservoir
+from hippo.perception.reservoir_params import ReservoirParams
 from hippo.perception.sfa import SFA
 from hippo.sim.record import Recording, record
 

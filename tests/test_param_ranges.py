@@ -17,8 +17,8 @@ import pytest
 
 from hippo.cognitive_map import DriveParams, PlannerParams
 from hippo.cognitive_map.localise import LocaliserParams
-from hippo.perception.ica import ICAParams
-from hippo.perception.reservoir import ReservoirParams
+from hippo.perception.ica_params import ICAParams
+from hippo.perception.reservoir_params import ReservoirParams
 from hippo.perception.sfa import SFAParams
 from hippo.perception.states import StateLayerParams
 from hippo.timing import NLMSParams, NonOccurrenceParams, SpectralParams, TransitionParams

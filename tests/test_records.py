@@ -15,7 +15,7 @@ from hippo.brain import Perception, Tick
 from hippo.perception.states import StateEvent
 from hippo.timing.chain import TimingStep
 from hippo.timing.spectral import BatteryState
-from hippo.timing.transitions import TransitionReadout
+from hippo.timing.transition_params import TransitionReadout
 
 RECORDS = [TransitionReadout, StateEvent, BatteryState, TimingStep, Perception, Tick]
 

@@ -47,7 +47,7 @@ def test_one_state_id_rule_everywhere():
     with pytest.raises(ValueError, match="pair"):
         check_transition("t", 5)
     # the map and the timing modules apply the same rule
-    from hippo.cognitive_map.graph import state_id
+    from hippo.cognitive_map.keys import state_id
     from hippo.timing.spectral import check_state_id as spectral_check
 
     with pytest.raises(ValueError, match=">= 0"):

@@ -58,6 +58,9 @@ DEFAULT_TESTS: dict[str, list[str]] = {
                                      "tests/perception/test_backends.py"],
     "hippo/perception/states.py": ["tests/perception/test_states.py",
                                    "tests/perception/test_state_ids.py"],
+    "hippo/perception/state_levels.py": ["tests/perception/test_states.py"],
+    "hippo/perception/ica_params.py": ["tests/perception/test_ica.py"],
+    "hippo/perception/reservoir_params.py": ["tests/perception/test_reservoir.py", PART_FILES],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -80,7 +83,7 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      "equivalent: differs only when t - t0 equals max_time - 1e-9 to the last bit"),
     ("*", r'closed="neither"', r'closed=(None|"NEITHER"|"XXneitherXX")',
      "equivalent: check_range treats an unknown 'closed' as 'neither'"),
-    ("hippo/cognitive_map/planner.py", r"dijkstra\(mat, directed=True, indices=n\)",
+    ("hippo/cognitive_map/shortest_paths.py", r"dijkstra\(mat, directed=True, indices=n\)",
      r"dijkstra\(mat, indices=n\)", "equivalent: directed=True is scipy's default"),
     ("hippo/cognitive_map/planner.py", r"if level <= 0:", r"if level < 0:",
      "equivalent: a zero level gives level * w = 0, never above the input"),
@@ -99,15 +102,16 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      "equivalent: count only preallocates; the generator yields len(graph) values"),
     ("hippo/perception/reservoir.py", r"if At?.shape\[0\] == 1:", r"if At?.shape\[1\] == 1:",
      "equivalent: the batched loop computes the same eq. 1 as the shared-leak fast path"),
-    ("hippo/perception/reservoir.py", r"n_inputs=8, n_neurons=600", r"(?s)^(?!.*n_inputs=)",
+    ("hippo/perception/reservoir_params.py", r"n_inputs=8, n_neurons=600", r"(?s)^(?!.*n_inputs=)",
      "equivalent: SMC09's input count is ReservoirParams' default"),
-    ("hippo/perception/reservoir.py", r"n_inputs=8, n_neurons=600", r"(?s)^(?!.*n_neurons=)",
+    ("hippo/perception/reservoir_params.py", r"n_inputs=8, n_neurons=600", r"(?s)^(?!.*n_neurons=)",
      "equivalent: SMC09's neuron count is ReservoirParams' default"),
-    ("hippo/perception/reservoir.py", r"input_weight=2.0, input_prob=0.075",
+    ("hippo/perception/reservoir_params.py", r"input_weight=2.0, input_prob=0.075",
      r"(?s)^(?!.*input_weight=)", "equivalent: SMC09's input weight is ReservoirParams' default"),
-    ("hippo/perception/reservoir.py", r"input_weight=2.0, input_prob=0.075",
+    ("hippo/perception/reservoir_params.py", r"input_weight=2.0, input_prob=0.075",
      r"(?s)^(?!.*input_prob=)", "equivalent: SMC09's input probability is the default"),
-    ("hippo/perception/reservoir.py", r"if arr.size > n_neurons:", r"if arr.size >= n_neurons:",
+    ("hippo/perception/reservoir_params.py", r"if arr.size > n_neurons:",
+     r"if arr.size >= n_neurons:",
      "equivalent: a leak of exactly n_neurons values was returned just before"),
     ("hippo/perception/reservoir.py", r'leak = f"\{a\[0\]:g\}" if a.size == 1',
      r"if \(a.size == 1\) and False", "equivalent: one rate joined with '/' is the same text"),
@@ -116,9 +120,9 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
     ("hippo/perception/reservoir.py", r'cpu_threads = threads if dev.type == "cpu"',
      r'if \(dev.type == "cpu"\) or True',
      "not measurable without a CUDA device (on the CPU both set the thread count)"),
-    ("hippo/perception/reservoir.py", r"spectral_radius=0.99", r"(?s)^(?!.*spectral_radius)",
+    ("hippo/perception/reservoir_params.py", r"spectral_radius=0.99", r"(?s)^(?!.*spectral_radius)",
      "equivalent: SMC09's spectral radius is ReservoirParams' default"),
-    ("hippo/perception/reservoir.py", r"leak=\(0.05, 0.15\)", r"(?s)^(?!.*leak=)",
+    ("hippo/perception/reservoir_params.py", r"leak=\(0.05, 0.15\)", r"(?s)^(?!.*leak=)",
      "equivalent: SMC09's leak rates are ReservoirParams' default"),
     ("hippo/cognitive_map/graphml.py", r"graph._pos_n.get\(s, 1\)", r"graph._pos_n.get\(s, \)",
      "equivalent: every state with a position has its count in _pos_n"),
@@ -411,14 +415,16 @@ def run(modules: list[str], tests: list[str], work: Path, sample: int | None, se
 
 NEURAL_MODULES = [
     *(f"hippo/timing/{m}.py" for m in
-      ("nlms", "non_occurrence", "spectral", "chain", "trials", "transitions")),
+      ("nlms", "non_occurrence", "spectral", "chain", "trials", "transitions",
+       "transition_params")),
     "hippo/perception/sfa.py", "hippo/perception/sfa_moments.py", "hippo/perception/ica.py",
-    "hippo/perception/ica_scores.py", "hippo/perception/reservoir.py",
+    "hippo/perception/ica_scores.py", "hippo/perception/ica_params.py",
+    "hippo/perception/reservoir.py", "hippo/perception/reservoir_params.py",
     "hippo/perception/backends.py",
-    "hippo/perception/states.py",
+    "hippo/perception/states.py", "hippo/perception/state_levels.py",
     *(f"hippo/cognitive_map/{m}.py" for m in
-      ("actions", "drives", "graph", "graphml", "inputs", "localise", "planner", "quality",
-       "synthetic")),
+      ("actions", "drives", "graph", "graphml", "inputs", "keys", "localise", "merge",
+       "planner", "quality", "shortest_paths", "synthetic")),
 ]
 
 

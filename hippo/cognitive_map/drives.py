@@ -42,7 +42,8 @@ from pathlib import Path
 from typing import Any
 
 from hippo._checks import check_fields, check_positive, check_range
-from hippo.cognitive_map.graph import Transition, as_transition
+from hippo.cognitive_map.graph import Transition
+from hippo.cognitive_map.keys import as_transition
 from hippo.io import CorruptFileError, load_json, save_json
 
 DRIVES_FORMAT = "hippo.cognitive_map.Drives/1"

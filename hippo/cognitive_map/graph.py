@@ -24,11 +24,9 @@ is maintained by the graph itself (adding ``B→C`` links every known ``A→B`` 
 every known ``C→D``), which is what lets :mod:`hippo.cognitive_map.planner` propagate on the much
 smaller state graph.
 
-Merging a repeat updates running means: the distance, the delay, and the heading as an exact
-circular mean. With ``S_n = Σ (cos θ_k, sin θ_k) = n R_n (cos h_n, sin h_n)`` (``h`` = heading,
-``R`` = ``heading_r``), a new heading ``θ`` gives ``S_{n+1} = S_n + (cos θ, sin θ)``,
-``h_{n+1} = atan2(S_{n+1})``, ``R_{n+1} = |S_{n+1}| / (n+1)`` — the same as the circular mean of all
-samples, without storing them. The kind (move/wait) is the majority kind (a tie keeps ``move``).
+Merging a repeat updates running means (the heading as an exact circular mean; the kind is the
+majority kind): :mod:`hippo.cognitive_map.merge`. Keys are checked by
+:mod:`hippo.cognitive_map.keys`.
 """
 
 from __future__ import annotations
@@ -46,27 +44,14 @@ import numpy as np
 from hippo._checks import check_finite, check_positive, check_range
 from hippo.cognitive_map.actions import MOVE, WAIT, Action, ActionLike, as_action, wrap_exact
 from hippo.cognitive_map.graphml import GRAPHML_FORMAT, NODE_ATTRS, read_graphml, write_graphml
-from hippo.types import Transition, check_state_id
+from hippo.cognitive_map.keys import as_transition, state_id
+from hippo.cognitive_map.merge import merge_repeat
+from hippo.types import Transition
 
 __all__ = [
     "GRAPHML_FORMAT", "MOVE", "NODE_ATTRS", "WAIT", "Action", "ActionLike", "TransitionGraph",
     "TransitionIndex", "as_transition", "state_id",
 ]
-
-
-def state_id(value: Any, name: str = "state") -> int:
-    """Return ``value`` as an ``int`` state id, or raise ``ValueError`` (the one rule of
-    :func:`hippo.types.check_state_id`: an integer >= 0, no bools, no floats)."""
-    return check_state_id(name, value)
-
-
-def as_transition(t: Any) -> Transition:
-    """Return ``t`` as an ``(a, b)`` tuple of ints, or raise ``ValueError``."""
-    try:
-        a, b = t
-    except (TypeError, ValueError):
-        raise ValueError(f"a transition is a pair (a, b) of state ids, got {t!r}") from None
-    return state_id(a, "transition start state"), state_id(b, "transition end state")
 
 
 def _xy(state: int, position: Any) -> tuple[float, float]:
@@ -269,7 +254,7 @@ class TransitionGraph:
             if node.get("inferred"):  # experience replaces the guess (a first real sample)
                 node.update(count=0, n_wait=0, n_delay=0, delay=None, heading=None,
                             inferred=False)
-            self._merge(node, act, delay, time)
+            merge_repeat(node, act, delay, time)
             self.version += 1
         return t
 
@@ -294,31 +279,6 @@ class TransitionGraph:
     def inferred(self, t: Transition) -> bool:
         """Is ``t`` an inferred move the robot has not made yet?"""
         return bool(self._g.nodes[self._check_transition(t)].get("inferred", False))
-
-    def _merge(self, d: dict[str, Any], act: Action, delay: float | None,
-               time: float | None) -> None:
-        n_move = d["count"] - d["n_wait"]
-        if act.is_wait:
-            d["n_wait"] += 1
-        else:
-            if n_move == 0 or d["heading"] is None:
-                d["heading"], d["heading_r"], d["distance"] = act.heading, 1.0, act.distance
-            else:
-                r = d["heading_r"] * n_move
-                sx = r * math.cos(d["heading"]) + math.cos(act.heading)
-                sy = r * math.sin(d["heading"]) + math.sin(act.heading)
-                d["heading"] = wrap_exact(math.atan2(sy, sx))
-                d["heading_r"] = min(1.0, math.hypot(sx, sy) / (n_move + 1))
-                d["distance"] += (act.distance - d["distance"]) / (n_move + 1)
-        d["count"] += 1
-        d["action"] = WAIT if 2 * d["n_wait"] > d["count"] else MOVE
-        if delay is not None:
-            d["n_delay"] += 1
-            d["delay"] = delay if d["delay"] is None else (
-                d["delay"] + (delay - d["delay"]) / d["n_delay"])
-        d["strength"] = 1.0
-        if time is not None:
-            d["last_used"] = time
 
     def _insert(self, t: Transition, attrs: dict[str, Any]) -> None:
         a, b = t

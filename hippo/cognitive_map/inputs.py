@@ -13,7 +13,8 @@ import numpy as np
 
 from hippo._checks import check_finite
 from hippo.cognitive_map.drives import Drives
-from hippo.cognitive_map.graph import TransitionGraph, as_transition
+from hippo.cognitive_map.graph import TransitionGraph
+from hippo.cognitive_map.keys import as_transition
 
 __all__ = ["drive_input", "effective_levels", "inferred_mask"]
 

@@ -32,9 +32,10 @@ Two graphs can carry that Dijkstra:
   ``V(s) = max_{(s, x)} act(s→x)``, and ``V`` solves the same kind of shortest-path problem on the
   *state* graph (one edge per transition, instead of one per pair of consecutive transitions).
 
-The sparse matrices are built once per structure change (cached on the graph, keyed by its
-``structure_version``). :func:`propagate_reference` is the pure-Python sweep on the networkx
-graph (Bellman-Ford with a FIFO work list), for tests and the benchmark.
+The sparse matrices (:mod:`hippo.cognitive_map.shortest_paths`) are built once per structure
+change (cached on the graph, keyed by its ``structure_version``). :func:`propagate_reference`
+is the pure-Python sweep on the networkx graph (Bellman-Ford with a FIFO work list), for tests
+and the benchmark.
 """
 
 from __future__ import annotations
@@ -45,17 +46,21 @@ from typing import Any, Literal
 
 import networkx as nx
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import dijkstra
 
 from hippo._checks import check_fields, check_positive, check_range
 from hippo.cognitive_map.drives import Drives
-from hippo.cognitive_map.graph import Transition, TransitionGraph, TransitionIndex, as_transition
+from hippo.cognitive_map.graph import Transition, TransitionGraph, TransitionIndex
 from hippo.cognitive_map.inputs import drive_input, effective_levels, inferred_mask
 from hippo.cognitive_map.inputs import input_array as _input_array
+from hippo.cognitive_map.keys import as_transition
+from hippo.cognitive_map.shortest_paths import (
+    _dijkstra_from_goals,
+    _state_order,
+    state_pattern,
+    transition_pattern,
+)
 
 Method = Literal["states", "transitions"]
-_K = 1.0  # offset of the super-source edges (keeps them strictly positive)
 
 
 @dataclass(frozen=True)
@@ -137,47 +142,7 @@ class Activity:
         return bool(self.inputs[i] > 0 and self.inputs[i] >= self.values[i] * (1 - rtol))
 
 
-# --------------------------------------------------------------------------- sparse structure
-def _csr_pattern(rows: np.ndarray, cols: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """(indptr, indices) of an n×n pattern with entries (rows[k], cols[k]) (no duplicates)."""
-    order = np.lexsort((cols, rows))
-    indices = cols[order].astype(np.int32)
-    indptr = np.zeros(n + 2, dtype=np.int32)  # one spare row for the super-source
-    np.cumsum(np.bincount(rows, minlength=n), out=indptr[1:n + 1])
-    indptr[n + 1] = indptr[n]
-    return indptr, indices
-
-
-def state_pattern(graph: TransitionGraph) -> tuple[np.ndarray, np.ndarray]:
-    """Reversed state graph (edge ``b → a`` per transition ``a→b``), cached per structure."""
-    def build() -> tuple[np.ndarray, np.ndarray]:
-        idx = graph.index()
-        return _csr_pattern(idx.b_s, idx.a_s, len(idx.states))
-    return graph.cached("planner.state_pattern", build)
-
-
-def _state_order(graph: TransitionGraph) -> np.ndarray:
-    """The transition behind each entry of :func:`state_pattern` (its storage order)."""
-    def build() -> np.ndarray:
-        idx = graph.index()
-        return np.lexsort((idx.a_s, idx.b_s))
-    return graph.cached("planner.state_order", build)
-
-
-def transition_pattern(graph: TransitionGraph) -> tuple[np.ndarray, np.ndarray]:
-    """Reversed transition graph (edge ``j → i`` when ``i = x→s`` and ``j = s→y``), cached."""
-    def build() -> tuple[np.ndarray, np.ndarray]:
-        idx = graph.index()
-        n, ns = len(idx), len(idx.states)
-        ones = np.ones(n, dtype=np.int8)
-        ar = np.arange(n)
-        starts = sp.csr_array((ones, (ar, idx.a_s)), shape=(n, ns))  # j starts at s
-        ends = sp.csr_array((ones, (idx.b_s, ar)), shape=(ns, n))    # i ends at s
-        rev = (starts @ ends).tocoo()                                # rev[j, i] = 1
-        return _csr_pattern(rev.row.astype(np.int64), rev.col.astype(np.int64), n)
-    return graph.cached("planner.transition_pattern", build)
-
-
+# --------------------------------------------------------------------------- propagation
 def prepare(graph: TransitionGraph, method: Method = "states") -> None:
     """Build (and cache) the index and sparse structure ahead of the first propagation."""
     graph.index()
@@ -185,28 +150,6 @@ def prepare(graph: TransitionGraph, method: Method = "states") -> None:
         state_pattern(graph)
     else:
         transition_pattern(graph)
-
-
-def _dijkstra_from_goals(indptr: np.ndarray, indices: np.ndarray, n: int,
-                         edge_cost: float | np.ndarray, goal_nodes: np.ndarray,
-                         goal_costs: np.ndarray) -> np.ndarray:
-    """Shortest cost to every node from a super-source with edges ``goal → K + cost``."""
-    # One start cost per goal node: the smallest.
-    order = np.lexsort((goal_costs, goal_nodes))
-    g, c = goal_nodes[order], goal_costs[order]
-    first = np.ones(len(g), dtype=bool)
-    first[1:] = g[1:] != g[:-1]
-    g, c = g[first], c[first]
-    nnz = len(indices)
-    data = np.empty(nnz + len(g))
-    data[:nnz] = edge_cost
-    data[nnz:] = _K + c
-    ptr = indptr.copy()
-    ptr[n + 1] = nnz + len(g)
-    mat = sp.csr_array((data, np.concatenate([indices, g.astype(np.int32)]), ptr),
-                       shape=(n + 1, n + 1))
-    dist = dijkstra(mat, directed=True, indices=n)
-    return dist[:n] - _K
 
 
 def propagate(graph: TransitionGraph, inputs: Any, w: float = 0.9, *,

@@ -19,13 +19,15 @@
 """
 
 from hippo.perception.contexts import ContextParams, ContextStates
-from hippo.perception.ica import FastICA, ICAConvergenceWarning, ICAParams
+from hippo.perception.ica import FastICA, ICAConvergenceWarning
+from hippo.perception.ica_params import ICAParams
 from hippo.perception.leak_sweep import fit_leak_sweep
 from hippo.perception.place_cell_params import ICANN09, SMC09, RCSFAICAParams
 from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
 from hippo.perception.resample import Decimator
-from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
+from hippo.perception.reservoir import Reservoir
+from hippo.perception.reservoir_params import ReservoirParams, expand_leak
 from hippo.perception.sfa import SFA, SFAParams
 from hippo.perception.sfa_moments import SFAMoments
 from hippo.perception.states import StateEvent, StateKey, StateLayer, StateLayerParams

@@ -53,7 +53,7 @@ A learned field can also win only on some passes, for a moment, at the start of 
 one's stretch: the robot goes ``P → X → Y`` on some passes and ``P → Y`` on others. Such a
 bypassed place ``X`` (its usual way in is ``P`` and out is ``Y``, and ``P`` is also ``Y``'s
 usual way in, ``min_count`` times without ``X``) is merged into ``Y``: one state that
-follows ``P`` on every pass.
+follows ``P`` on every pass. Both merges: :mod:`~hippo.perception.place_merges`.
 
 **Memory.** Each place keeps only its last ``memory`` instances (a ring buffer), so a long
 deployment holds a bounded amount of data; trees are bounded by ``max_depth`` and the number
@@ -76,11 +76,12 @@ import numpy as np
 from scipy.stats import norm
 
 from hippo.perception.context_tree import ContextKey, ContextParams, _Inst, _Node, g_test
+from hippo.perception.place_merges import PlaceMerges
 
 __all__ = ["ContextKey", "ContextParams", "ContextStates", "g_test"]
 
 
-class ContextStates:
+class ContextStates(PlaceMerges):
     """Online context splitting of learned places (see the module docstring).
 
     :meth:`observe` takes the place the robot just entered and the time; it returns the id of
@@ -331,86 +332,3 @@ class ContextStates:
         node.cid, node.route, node.default, node.pos = keep, {}, None, -1
         self.n_merges += 1
         return True
-
-    # ------------------------------------------------------------------ merging places
-    def _merge_places(self, place: Hashable) -> None:
-        """Merge ``place`` into another place entered from and left to the same places."""
-        p = self.params
-        if not p.merge_places:
-            return
-
-        def pred(i: _Inst) -> Hashable:
-            return self.same(i.history[0])
-
-        def succ(i: _Inst) -> Hashable:
-            return self.same(i.next)
-
-        def top(insts: list[_Inst], f: Callable[[_Inst], Hashable]) -> Hashable:
-            counts: dict[Hashable, int] = {}
-            for i in insts:
-                counts[f(i)] = counts.get(f(i), 0) + 1
-            return max(counts, key=lambda v: (counts[v], repr(v)))
-
-        mine = [i for i in self._data[place] if i.history]
-        if len(mine) < p.min_count:
-            return
-        tp, ts = top(mine, pred), top(mine, succ)
-        if min(sum(pred(i) == tp for i in mine), sum(succ(i) == ts for i in mine)) < \
-                0.5 * len(mine):
-            return  # no usual way in and out: nothing says another place is the same
-        if p.merge_bypasses and ts in self._data and ts != tp:
-            # a bypass: the robot goes tp -> place -> ts on some passes and tp -> ts on others
-            direct = [i for i in self._data[ts] if i.history and pred(i) != place]
-            if (sum(pred(i) == tp for i in direct) >= p.min_count
-                    and top(direct, pred) == tp):
-                self._join(ts, place)
-                return
-        for other in list(self._trees):
-            if other == place or other in (tp, ts):
-                continue
-            theirs = [i for i in self._data[other] if i.history]
-            if (len(theirs) < p.min_count or top(theirs, pred) != tp
-                    or top(theirs, succ) != ts
-                    or self._differ_dwell([i.dwell for i in mine], [i.dwell for i in theirs],
-                                          self._z_merge)
-                    or self._differ_around(mine, theirs)):
-                continue
-            keep, gone = (other, place) if len(self._data[other]) >= len(self._data[place]) \
-                else (place, other)
-            self._join(keep, gone)
-            return
-
-    def _differ_around(self, a: list[_Inst], b: list[_Inst]) -> bool:
-        """Do ``a`` and ``b`` differ in any step of their past or future (``merge_horizon``)?
-        Until each step has ``min_count`` instances on both sides, they count as different."""
-        p = self.params
-        for k in range(p.merge_horizon):
-            for seq in ("history", "future"):
-                aa = [i for i in a if len(getattr(i, seq)) > k]
-                bb = [i for i in b if len(getattr(i, seq)) > k]
-                if min(len(aa), len(bb)) < p.min_count:
-                    return True  # not seen enough yet to call them the same
-                if self._differ_in(aa, bb, lambda i, s=seq, k=k: self.same(getattr(i, s)[k]),
-                                   p.alpha_merge):
-                    return True
-            da = [i.future_dwell[k] for i in a if len(i.future_dwell) > k]
-            db = [i.future_dwell[k] for i in b if len(i.future_dwell) > k]
-            if min(len(da), len(db)) >= p.min_count and self._differ_dwell(da, db, self._z_merge):
-                return True
-        return False
-
-    def _join(self, keep: Hashable, gone: Hashable) -> None:
-        """``gone`` becomes the same state as ``keep``: one unsplit place again, whose id is the
-        oldest of their contexts (the others are retired into it)."""
-        self._same[gone] = keep
-        data = self._data[keep]
-        for i in self._data.pop(gone):
-            data.append(i)
-        leaves = self._leaves(self._trees[keep]) + self._leaves(self._trees.pop(gone))
-        root = min(n.cid for n in leaves)  # type: ignore[type-var]
-        for n in leaves:
-            if n.cid != root:
-                self._alias[n.cid] = root  # type: ignore[index]
-        self._trees[keep] = _Node(0, cid=root)
-        self._keys[root] = ContextKey(keep, ())
-        self.n_place_merges += 1

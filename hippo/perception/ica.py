@@ -29,7 +29,8 @@ Additions beyond the papers:
   whitened input is computed once and the numbers are those of the one-array form.
 
 Outputs are unit-variance on the data the ICA was fitted on (``output_std_`` = 1), so the
-ICANN09 threshold "responds ≥ 4.5" means 4.5 training standard deviations.
+ICANN09 threshold "responds ≥ 4.5" means 4.5 training standard deviations. The
+hyper-parameters are :class:`~hippo.perception.ica_params.ICAParams`.
 
 A fitted FastICA saves and loads its own state (:meth:`FastICA.to_arrays` /
 :meth:`FastICA.from_arrays`, :meth:`FastICA.save` / :meth:`FastICA.load`:
@@ -40,62 +41,23 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 import scipy.linalg
 
-from hippo._checks import check_fields, check_finite
+from hippo._checks import check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo._threads import parallel_map
-from hippo.perception.ica_scores import SCORES, _score_chunks
+from hippo.perception.ica_params import ICAParams
+from hippo.perception.ica_scores import _score_chunks
 from hippo.perception.ica_scores import score_outputs as score_outputs
 from hippo.perception.part_files import PartArrays, PartFile
 
 
 class ICAConvergenceWarning(UserWarning):
     """FastICA stopped at ``max_iter`` before the fixed point converged."""
-
-
-@dataclass(frozen=True)
-class ICAParams:
-    """FastICA hyper-parameters (SMC09: 4 units; ICANN09: 70 units)."""
-
-    #: number of independent components (None: as many as inputs)
-    n_components: int | None = None
-    #: "symmetric" (default) or "deflation"
-    algorithm: str = "symmetric"
-    max_iter: int = 1000
-    tol: float = 1e-6
-    #: random initialisations; the best by ``score`` is kept
-    n_restarts: int = 1
-    score: str = "kurtosis"
-    #: "auto" (skip when the input's covariance is the identity), True, or False
-    whiten: bool | str = "auto"
-    seed: int = 0
-    #: threads the restarts run on (None: the usable cores); the result does not depend on it
-    workers: int | None = None
-
-    def __post_init__(self) -> None:
-        check_fields(self)
-        if self.n_components is not None and int(self.n_components) < 1:
-            raise ValueError(f"n_components (n_ica) must be >= 1, got {self.n_components}")
-        if self.algorithm not in ("symmetric", "deflation"):
-            raise ValueError(f"algorithm must be 'symmetric' or 'deflation', got "
-                             f"{self.algorithm!r}")
-        if int(self.max_iter) < 1:
-            raise ValueError(f"max_iter must be >= 1, got {self.max_iter}")
-        if not float(self.tol) > 0:
-            raise ValueError(f"tol must be > 0, got {self.tol}")
-        if int(self.n_restarts) < 1:
-            raise ValueError(f"n_restarts must be >= 1, got {self.n_restarts}")
-        if self.score not in SCORES:
-            raise ValueError(f"score must be one of {SCORES}, got {self.score!r}")
-        if self.workers is not None and int(self.workers) < 1:
-            raise ValueError(f"workers must be >= 1 or None, got {self.workers}")
-        if self.whiten not in ("auto", True, False):
-            raise ValueError(f"whiten must be 'auto', True or False, got {self.whiten!r}")
 
 
 def _sym_decorrelate(W: np.ndarray) -> np.ndarray:

@@ -12,7 +12,8 @@ from hippo._threads import n_workers, parallel_map
 from hippo.perception.backends import _num_threads as _torch_threads
 from hippo.perception.place_cell_params import RCSFAICAParams
 from hippo.perception.place_cells import RCSFAICA
-from hippo.perception.reservoir import Reservoir, expand_leak
+from hippo.perception.reservoir import Reservoir
+from hippo.perception.reservoir_params import expand_leak
 from hippo.perception.sfa import SFA
 from hippo.perception.sfa_moments import SFAMoments
 from hippo.perception.slow_pool import with_pool

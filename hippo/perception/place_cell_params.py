@@ -4,10 +4,10 @@
 (Antonelo & Schrauwen, ICANN 2009: 17 distance sensors, maze E1) are the one home of the
 papers' settings; :meth:`~hippo.perception.place_cells.RCSFAICA.smc09` and
 :meth:`~hippo.perception.place_cells.RCSFAICA.icann09` start from them. Each layer's own
-parameter class (:class:`~hippo.perception.reservoir.ReservoirParams`,
-:class:`~hippo.perception.sfa.SFAParams`, :class:`~hippo.perception.ica.ICAParams`) checks its
-fields; :class:`RCSFAICAParams` builds them (``reservoir_params()``, ``sfa_params()``,
-``ica_params()``) and names its own field in their messages.
+parameter class (:class:`~hippo.perception.reservoir_params.ReservoirParams`,
+:class:`~hippo.perception.sfa.SFAParams`, :class:`~hippo.perception.ica_params.ICAParams`)
+checks its fields; :class:`RCSFAICAParams` builds them (``reservoir_params()``,
+``sfa_params()``, ``ica_params()``) and names its own field in their messages.
 """
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ import numpy as np
 
 from hippo._checks import check_choice, check_fields, check_int
 from hippo.perception.backends import _check_device, _np_dtype
-from hippo.perception.ica import ICAParams
-from hippo.perception.reservoir import ReservoirParams, _leak_param
+from hippo.perception.ica_params import ICAParams
+from hippo.perception.reservoir_params import ReservoirParams, _leak_param
 from hippo.perception.sfa import SFAParams
 from hippo.perception.slow_pool import check_slow_pool
 

@@ -33,7 +33,8 @@ can yield place cells. A fitted model meeting readings outside the range in :met
 :meth:`transform` follows ``out_of_range``: ``"error"`` (default) raises ``ValueError``,
 ``"warn"`` clips them to the range and emits :class:`InputRangeWarning`, ``"clip"`` clips them
 silently. A reading is never extrapolated (a linear readout of readings ×1e6 would give
-activities of ±1e4). NaN and inf are always refused.
+activities of ±1e4). NaN and inf are always refused (the checks:
+:mod:`~hippo.perception.place_cell_inputs`).
 
 Optional input down-sampling (``downsample > 1``, ICANN09: 50) uses a causal anti-aliasing
 FIR (:mod:`hippo.perception.resample`); the reservoir then ticks once per ``downsample`` inputs
@@ -43,7 +44,6 @@ and outputs are held in between.
 from __future__ import annotations
 
 import os
-import warnings
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 from itertools import pairwise
@@ -52,11 +52,11 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import as_array, check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo._threads import single_threaded_blas
 from hippo.perception.ica import FastICA, output_stats
 from hippo.perception.place_cell_files import FORMAT, load_model, save_model
+from hippo.perception.place_cell_inputs import InputRangeWarning, SensorInputs
 from hippo.perception.place_cell_params import ICANN09, SMC09, RCSFAICAParams
 from hippo.perception.resample import Decimator, hold
 from hippo.perception.reservoir import Reservoir
@@ -74,16 +74,13 @@ __all__ = [
 ]
 
 
-class InputRangeWarning(RuntimeWarning):
-    """Readings outside the model's ``input_range`` were clipped (``out_of_range='warn'``)."""
-
 #: reservoir ticks per chunk when the harvest and the SFA moments run side by side
 _HARVEST_CHUNK = 2048
 #: a fit holds the reservoir states up to this size, and streams them beyond (``fit(stream=)``)
 _HOLD_BYTES = 256 * 2**20
 
 
-class RCSFAICA(ParamsEstimator):
+class RCSFAICA(SensorInputs, ParamsEstimator):
     """Reservoir → linear SFA → FastICA place cells (SMC09 Fig. 1; ICANN09 Fig. 1).
 
     ``RCSFAICA(params, **overrides)`` stores ``params`` (a :class:`RCSFAICAParams`, default
@@ -116,51 +113,6 @@ class RCSFAICA(ParamsEstimator):
         return cls(ICANN09, **overrides)
 
     # ------------------------------------------------------------------ input handling
-    def _check_U(self, U: Any, *, fitting: bool = False) -> np.ndarray:
-        U = as_array("sensor sequence U", U)
-        n = self.params.n_inputs
-        if U.ndim != 2 or U.shape[1] != n:
-            raise ValueError(f"sensor sequence U must have shape (T, {n}), got {U.shape}")
-        if (not np.issubdtype(U.dtype, np.number) or np.issubdtype(U.dtype, np.complexfloating)
-                or U.dtype.kind == "b"):
-            raise ValueError(f"sensor sequence U must be real numbers, got dtype {U.dtype}")
-        U = check_finite("sensor sequence U", U, keep_float32=True)
-        rng = self.params.input_range
-        if rng is not None and U.size and (U.min() < rng[0] or U.max() > rng[1]):
-            msg = (f"sensor sequence U holds readings outside input_range [{rng[0]:g}, "
-                   f"{rng[1]:g}] (min {U.min():g}, max {U.max():g})")
-            if fitting:
-                raise ValueError(msg + "; place cells are learned from sensor readings scaled to "
-                                 "input_range: rescale U, or set input_range to its true range")
-            U = self._out_of_range(U, msg)
-        return U
-
-    def _out_of_range(self, u: np.ndarray, msg: str) -> np.ndarray:
-        """Apply the ``out_of_range`` policy to inputs outside ``input_range``."""
-        policy = self.params.out_of_range
-        if policy == "error":
-            raise ValueError(msg + "; the model was fitted on readings in that range and would "
-                             "extrapolate (set out_of_range='clip' or 'warn' to clip instead)")
-        if policy == "warn":
-            warnings.warn(msg + "; clipped to the range", InputRangeWarning, stacklevel=3)
-        lo, hi = self.params.input_range  # type: ignore[misc]
-        return np.clip(u, lo, hi)
-
-    def _check_trainable(self, U: np.ndarray) -> None:
-        """Refuse recordings that cannot yield place cells: too short, or no sensor varies."""
-        p = self.params
-        n_updates = -(-U.shape[0] // p.downsample) - p.washout
-        if n_updates < p.min_fit_ticks:
-            raise ValueError(
-                f"U has {U.shape[0]} ticks ({n_updates} reservoir updates after a washout of "
-                f"{p.washout} and down-sampling by {p.downsample}); fitting needs at least "
-                f"min_fit_ticks={p.min_fit_ticks} updates of exploration")
-        spread = U.max(axis=0) - U.min(axis=0)
-        if not (spread > 1e-9).any():
-            raise ValueError(
-                f"every sensor in U is constant (values {np.unique(U[0]).tolist()[:4]}): stuck "
-                "or disconnected sensors carry no information about place")
-
     def features(self, U: np.ndarray, *, downsampled: bool = False) -> np.ndarray:
         """SFA input ``[u(t); x(t+1)]`` (and its slow pool ``m(t)`` with ``slow_pool``) for a
         recording ``U`` (at the down-sampled rate), from ``x(0) = 0``, ``m(-1) = 0``. Set

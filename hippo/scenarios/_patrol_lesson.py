@@ -114,7 +114,7 @@ class Lesson:
     course: PatrolCourse
     reproduced: float  # the fraction of the loop it reproduced alone after the leash
     taught_stops: list[float | None]  # per checkpoint, the robot's stillness while blocked
-    route_kind: str = "shortest"  # what its route is (hippo.tasks.patrol.choose_route)
+    route_kind: str = "shortest"  # what its route is (hippo.tasks.patrol_sets.choose_route)
 
 
 #: the options a saved lesson fixes (written into its meta, taken from it by --load)

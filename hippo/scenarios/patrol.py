@@ -77,7 +77,7 @@ check_args = check_course_args
 def route_note(route: Route, kind: str = "shortest") -> str:
     """What the summary says about a route the patrol is known not to hold on: one that runs
     out and back (:attr:`Route.winding` 0) and is not a wall tour (``kind``, from
-    :func:`hippo.tasks.patrol.choose_route`: a tree's tour runs every corridor both ways too,
+    :func:`hippo.tasks.patrol_sets.choose_route`: a tree's tour runs every corridor both ways too,
     along the line the robot explored), else nothing."""
     if route.winding != 0 or kind == "tour":
         return ""

@@ -23,7 +23,7 @@ recordings for reuse.
 
 Ceiling (``--ceiling``, default; ``--no-ceiling`` skips it): a supervised ridge read-out of
 the same reservoir state ``[u; x]`` (room A vs B, 5 blocked folds in time,
-:func:`~hippo.perception.metrics.ridge_ceiling`) shows what the sensors allow next to what
+:func:`~hippo.perception.ceiling.ridge_ceiling`) shows what the sensors allow next to what
 the unsupervised room cell reaches.
 
 Faults (``--faults``): sensors die (stuck at 0, stuck at 1, or noise only; 0-3 of the 8) or
@@ -43,21 +43,19 @@ from __future__ import annotations
 import argparse
 import time
 import warnings
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from hippo.cli_args import integer, probability, slow_pool
 from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
-from hippo.io import load_json, save_json, save_npz
+from hippo.io import save_npz
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
 from hippo.progress import Progress
 from hippo.scenarios._common import (
     add_cache_argument,
     add_seeds_argument,
-    cached_recording,
     mean_sd,
     parse_leak,
     prepare_out,
@@ -71,6 +69,7 @@ from hippo.scenarios._selection import (
     select_setting,
     selection_summary,
 )
+from hippo.scenarios._two_rooms_recordings import _recordings
 from hippo.scenarios._two_rooms_report import (
     TARGETS,
     _evaluate,
@@ -86,9 +85,6 @@ from hippo.scenarios._two_rooms_report import (
     _sweep_summary,
 )
 from hippo.sim import arenas
-from hippo.sim.controllers import WallFollower, WallFollowerParams
-from hippo.sim.record import Recording, record
-from hippo.sim.world import World
 
 PAPER_LEAK = (0.05, 0.15)
 #: the room cell's defaults, chosen on tuning seeds 0-9: leaks and SFA / ICA units
@@ -99,8 +95,6 @@ CORRIDOR_UNITS = 4
 #: the test part (the last eighth) must hold the first kidnapping and the return (tick 400)
 MIN_TICKS = 4000
 CORRIDOR_LEAK = (0.11, 0.14)
-KIDNAP_AWAY = (150, 640)    # test ticks: moved to the other room (SMC09 Fig. 7)
-KIDNAP_BACK = (400, 980)    # test ticks: put back where it was taken from
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -162,88 +156,6 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
     if args.slow_pool and (args.faults or args.leak_sweep):
         parser.error("argument --slow-pool: not measured with --faults or --leak-sweep (they "
                      "read the reservoir state without the pool); leave one out")
-
-
-def _other_room_pose(arena, room: str, rng: np.random.Generator) -> tuple[float, float, float]:
-    target = "room_a" if room == "room_b" else "room_b"
-    region = next(r for r in arena.regions if r.name == target)
-    x0, y0, x1, y1 = region.rects[0]
-    return arena.sample_free_pose(rng, margin=4.0, rect=(x0 + 6, y0 + 6, x1 - 6, y1 - 6))
-
-
-def _room_at(arena, x: float, y: float) -> str:
-    name = arena.region_of(x, y)
-    if name in ("room_a", "room_b"):
-        return name
-    return "room_a" if x < arena.width * 0.375 else "room_b"
-
-
-def kidnapped_recording(arena, ticks: int, n_train: int, *, seed: int, rho: float
-                        ) -> tuple[Recording, list[int], list[str], list[bool]]:
-    """The same run as the clean recording, but kidnapped during the test part.
-
-    At test ticks 150 and 640 the robot is moved to a random free pose in the other room; at
-    400 and 980 it is put back at the pose it was taken from. Returns the recording, the
-    absolute event ticks, the kind of each event, and whether the event really changed the
-    robot's room (the wall follower sometimes walks back to its room on its own before it is
-    put back; such a "kidnap" changes nothing and is left out of the recovery statistics).
-    """
-    rng = np.random.default_rng([seed, 7])
-    kid: list[tuple[int, tuple[float, float, float]]] = []
-    events, kinds, moved = [], [], []
-    test_len = ticks - n_train
-    # one pass of the same run (same world and controller seeds as ``record``) decides the
-    # kidnaps as it goes; ``record`` then replays the run with them
-    world = World(arena, sensors="ir8", seed=seed)
-    world.reset(seed)
-    ctrl = WallFollower(WallFollowerParams(rho=rho), sensors=world.sensors, robot=world.robot,
-                        rng=np.random.default_rng([seed, 1]))
-    plan = {}
-    for away, back in zip(KIDNAP_AWAY, KIDNAP_BACK):
-        if back < test_len:
-            plan[n_train + away] = "away"
-            plan[n_train + back] = "back"
-    obs = world._observe(np.zeros(3), 0.0, False)
-    taken: tuple[float, float, float] | None = None
-    room = ""
-    for k in range(max(plan, default=-1) + 1):
-        if k in plan:
-            pose = world.pose
-            if plan[k] == "away":
-                taken, room = pose, _room_at(arena, pose[0], pose[1])
-                dest = _other_room_pose(arena, room, rng)
-                kinds.append(f"away from {room}")
-                moved.append(True)
-            else:
-                dest = taken
-                kinds.append(f"back to {room}")
-                moved.append(_room_at(arena, pose[0], pose[1]) != room)
-            kid.append((k, dest))
-            events.append(k)
-            world.place_robot(*dest)
-            obs = world._observe(np.zeros(3), 0.0, False)
-        obs = world.step(ctrl.act(obs))
-    rec = record(arena, ticks, seed=seed, rho=rho, sensors="ir8", kidnaps=kid, progress=False)
-    return rec, events, kinds, moved
-
-
-def _recordings(args: argparse.Namespace, arena, ticks: int, n_train: int, seed: int):
-    """The clean and the kidnapped recording of exploration run ``seed`` (cached with
-    ``--cache``)."""
-    tag = f"two-rooms_t{ticks}_rho{args.rho:g}_s{seed}"
-    rec = cached_recording(args.cache, tag, lambda: record(
-        arena, ticks, seed=seed, rho=args.rho, sensors="ir8", desc=f"two-rooms seed {seed}"))
-    meta_path = Path(args.cache) / f"{tag}_kid.json" if args.cache else None
-    if meta_path is not None and meta_path.exists():
-        meta = load_json(meta_path)
-        rec_kid = Recording.load(meta_path.with_suffix(".npz"))
-        return rec, rec_kid, meta["events"], meta["kinds"], meta["moved"]
-    rec_kid, events, kinds, moved = kidnapped_recording(arena, ticks, n_train, seed=seed,
-                                                        rho=args.rho)
-    if meta_path is not None:
-        rec_kid.save(meta_path.with_suffix(".npz"))
-        save_json(meta_path, {"events": events, "kinds": kinds, "moved": moved})
-    return rec, rec_kid, events, kinds, moved
 
 
 def room_ceiling(model: RCSFAICA, U: np.ndarray, rooms: dict[str, np.ndarray]) -> M.Ceiling:

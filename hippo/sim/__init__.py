@@ -11,7 +11,8 @@ Quick start::
 """
 
 from hippo.sim import arenas
-from hippo.sim.arena import Arena, ArenaBuilder, Region, Zone
+from hippo.sim.arena import Arena, Region, Zone
+from hippo.sim.builder import ArenaBuilder
 from hippo.sim.controllers import (
     AvoidanceParams,
     GoToHeading,

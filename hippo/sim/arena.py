@@ -2,7 +2,7 @@
 
 An :class:`Arena` is plain geometry (centimetres); :class:`~hippo.sim.world.World` turns it into a
 pymunk space. Reference locations and regions are for analysis only and never reach the robot.
-Build a new arena with :class:`ArenaBuilder`::
+Build a new arena with :class:`~hippo.sim.builder.ArenaBuilder`::
 
     arena = (ArenaBuilder("box", 100, 60)
              .outer_walls()
@@ -22,8 +22,6 @@ from itertools import pairwise
 
 import numpy as np
 from scipy import ndimage
-
-from hippo._checks import check_finite
 
 Point = tuple[float, float]
 Rect = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax
@@ -326,95 +324,3 @@ def _segment_clear(p: Point, q: Point, walls: np.ndarray, reach: float) -> bool:
     dist = np.minimum.reduce([point_to_walls(P), point_to_walls(Q), point_to_segment(a),
                               point_to_segment(b)])
     return bool(np.all(dist >= reach - 1e-9))
-
-
-class ArenaBuilder:
-    """Fluent builder for :class:`Arena` (every method returns the builder)."""
-
-    def __init__(self, name: str, width: float, height: float) -> None:
-        if width <= 0 or height <= 0:
-            raise ValueError(f"arena size must be positive, got {width} x {height}")
-        self.name, self.width, self.height = name, float(width), float(height)
-        self._walls: list[tuple[Point, Point]] = []
-        self._zones: list[Zone] = []
-        self._regions: list[Region] = []
-        self._locations: list[Point] = []
-        self._landmarks: dict[str, Point] = {}
-        self._start: tuple[float, float, float] | None = None
-
-    def wall(self, a: Sequence[float], b: Sequence[float]) -> ArenaBuilder:
-        """A straight wall segment from ``a`` to ``b``."""
-        pa = tuple(float(v) for v in check_finite("wall start", a))
-        pb = tuple(float(v) for v in check_finite("wall end", b))
-        if len(pa) != 2 or len(pb) != 2:
-            raise ValueError("wall end points must be (x, y) pairs")
-        if pa == pb:
-            raise ValueError(f"wall from {pa} to {pb} has zero length")
-        self._walls.append((pa, pb))  # type: ignore[arg-type]
-        return self
-
-    def polyline(self, points: Sequence[Sequence[float]], closed: bool = False) -> ArenaBuilder:
-        """Walls joining consecutive points (and the last to the first if ``closed``)."""
-        pts = [tuple(p) for p in points]
-        for a, b in zip(pts, pts[1:] + (pts[:1] if closed else [])):
-            self.wall(a, b)
-        return self
-
-    def box(self, rect: Rect) -> ArenaBuilder:
-        """A closed rectangular block (pillar) ``(xmin, ymin, xmax, ymax)``."""
-        x0, y0, x1, y1 = rect
-        return self.polyline([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], closed=True)
-
-    def outer_walls(self) -> ArenaBuilder:
-        """The four walls of the bounding rectangle."""
-        return self.box((0.0, 0.0, self.width, self.height))
-
-    def zone(self, name: str, rect: Rect, colour: int = 1) -> ArenaBuilder:
-        """A coloured floor rectangle; ``colour`` ≥ 1 is what the floor sensor reports."""
-        if colour < 1:
-            raise ValueError("zone colour ids start at 1 (0 is plain floor)")
-        self._zones.append(Zone(name, tuple(map(float, rect)), int(colour)))  # type: ignore
-        return self
-
-    def region(self, name: str, *rects: Rect) -> ArenaBuilder:
-        """A named region made of one or more rectangles (for analysis only)."""
-        self._regions.append(Region(name, tuple(tuple(map(float, r)) for r in rects)))  # type: ignore
-        return self
-
-    def location(self, x: float, y: float) -> ArenaBuilder:
-        """One labelled reference location (for analysis only)."""
-        self._locations.append((float(x), float(y)))
-        return self
-
-    def grid_locations(self, nx: int, ny: int, rect: Rect | None = None) -> ArenaBuilder:
-        """An ``nx`` × ``ny`` grid of reference locations over ``rect`` (cell centres)."""
-        x0, y0, x1, y1 = rect if rect is not None else (0, 0, self.width, self.height)
-        for j in range(ny):
-            for i in range(nx):
-                self.location(x0 + (i + 0.5) * (x1 - x0) / nx, y0 + (j + 0.5) * (y1 - y0) / ny)
-        return self
-
-    def landmark(self, name: str, x: float, y: float) -> ArenaBuilder:
-        """A named point a scenario can refer to (goal centre, checkpoint, start place)."""
-        self._landmarks[name] = (float(x), float(y))
-        return self
-
-    def start(self, x: float, y: float, heading: float = 0.0) -> ArenaBuilder:
-        """The robot's default start pose."""
-        self._start = (float(x), float(y), float(heading))
-        return self
-
-    def build(self) -> Arena:
-        """Freeze into an :class:`Arena` (checks the start pose is free)."""
-        if not self._walls:
-            raise ValueError(f"arena {self.name!r} has no walls")
-        arena = Arena(
-            name=self.name, width=self.width, height=self.height, walls=tuple(self._walls),
-            zones=tuple(self._zones), regions=tuple(self._regions),
-            locations=np.array(self._locations, float).reshape(-1, 2),
-            start_pose=self._start or (self.width / 2, self.height / 2, 0.0),
-            landmarks=dict(self._landmarks),
-        )
-        if not arena.is_free(arena.start_pose[0], arena.start_pose[1], 3.7):
-            raise ValueError(f"start pose {arena.start_pose} of {self.name!r} is not free")
-        return arena

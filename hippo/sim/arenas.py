@@ -13,7 +13,8 @@ from collections.abc import Callable
 
 import numpy as np
 
-from hippo.sim.arena import Arena, ArenaBuilder
+from hippo.sim.arena import Arena
+from hippo.sim.builder import ArenaBuilder
 
 
 def two_rooms() -> Arena:

@@ -1,7 +1,7 @@
 """Generated worlds: multi-room flats nobody drew by hand.
 
 ``random_flat(n_rooms, seed)`` lays out ``n_rooms`` rooms in a row, each joined to the next by a
-corridor, built with :class:`~hippo.sim.arena.ArenaBuilder`. Everything that tells rooms apart
+corridor, built with :class:`~hippo.sim.builder.ArenaBuilder`. Everything that tells rooms apart
 lies **within the e-puck's 30 cm infra-red range** (the feasibility study's rule: rooms that map
 onto each other by a symmetry, or differ only in size, are nearly the same to any sensor
 history):
@@ -30,7 +30,8 @@ from itertools import pairwise
 import numpy as np
 from scipy import ndimage
 
-from hippo.sim.arena import Arena, ArenaBuilder
+from hippo.sim.arena import Arena
+from hippo.sim.builder import ArenaBuilder
 
 _PAD = 15.0          # free margin around the flat (alcoves stick out of the room boxes)
 _DOOR_MARGIN = 16.0  # door edges keep this far from a room's corners (chamfers fit)

@@ -8,9 +8,10 @@
   cells fitted on it, the map learned from it, the wall to explore along for a route, the
   loop the exploring wall follower runs as a route.
 - :class:`Experimenter` (``teaching.py``) — the reward sound after a stop in a zone.
-- :class:`Route`, :class:`LapCounter`, :class:`AngleLaps`, :func:`progress_along`,
-  :func:`route_passes`, :func:`passes`, :func:`stops` (``routes.py``) — routes through an
-  arena's checkpoints, progress along them, laps, checkpoint passes and stops.
+- :class:`Route`, :class:`LapCounter`, :func:`lead_from` (``routes.py``) — routes through an
+  arena's checkpoints, progress along them, laps.
+- :class:`AngleLaps`, :func:`progress_along`, :func:`route_passes`, :func:`passes`,
+  :func:`stops` (``passes.py``) — checkpoint passes and stops read from a run's log.
 - :class:`PatrolCourse`, :class:`PatrolPhase`, :func:`patrol_route`, :func:`check_patrol`,
   :func:`pass_report`, :func:`random_patrol`, ``ARENA_CHECKPOINTS``, ``HIREL_WAITS``
   (``patrol.py``) — a timed patrol on any arena: its lesson, its laps, what each pass by a
@@ -32,6 +33,7 @@ from hippo.tasks.explore import (
     wall_tour,
 )
 from hippo.tasks.log import Log, enum_names, event_arrays
+from hippo.tasks.passes import AngleLaps, passes, progress_along, route_passes, stops
 from hippo.tasks.patrol import (
     ARENA_CHECKPOINTS,
     HIREL_WAITS,
@@ -42,16 +44,7 @@ from hippo.tasks.patrol import (
     patrol_route,
     random_patrol,
 )
-from hippo.tasks.routes import (
-    AngleLaps,
-    LapCounter,
-    Route,
-    lead_from,
-    passes,
-    progress_along,
-    route_passes,
-    stops,
-)
+from hippo.tasks.routes import LapCounter, Route, lead_from
 from hippo.tasks.session import Session
 from hippo.tasks.teaching import Experimenter
 

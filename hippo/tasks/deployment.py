@@ -26,8 +26,9 @@ from typing import Any
 import numpy as np
 
 from hippo._checks import check_positive
+from hippo.tasks.passes import stops
 from hippo.tasks.patrol import PASS_RADIUS, pass_report
-from hippo.tasks.routes import Route, stops
+from hippo.tasks.routes import Route
 
 __all__ = ["FAILURE_KINDS", "DeploymentParams", "StuckWatch", "health", "tally_failures"]
 

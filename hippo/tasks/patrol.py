@@ -2,11 +2,9 @@
 the leash, a loop reproduced, the waits taught by blocks), autonomous laps, and what each pass
 by a checkpoint gave.
 
-- ``ARENA_CHECKPOINTS`` — default checkpoints of the built-in arenas; ``HIREL_WAITS`` — HIREL's
-  taught waits (s).
-- :func:`patrol_route`, :func:`choose_route` — the leash route through the checkpoints (and
-  what it is); :func:`check_patrol` — the checks a user's checkpoints and waits must pass
-  (free floor, reachable, 40 cm apart along the route, one wait each).
+- ``ARENA_CHECKPOINTS``, ``HIREL_WAITS``, :func:`patrol_route`, :func:`choose_route`,
+  :func:`check_patrol`, :func:`random_patrol` — the checkpoints, their waits and the route
+  through them (from :mod:`hippo.tasks.patrol_sets`).
 - :class:`PatrolPhase` — the phases of the patrol scenarios (their names go into ``run.npz``).
 - :class:`PatrolCourse` — the phases on a :class:`~hippo.tasks.Session`: :meth:`teach`,
   :meth:`patrol`, :meth:`adapt`, :meth:`kidnap`, and the lap bookkeeping behind them.
@@ -22,13 +20,19 @@ from enum import IntEnum
 from typing import Any
 
 import numpy as np
-from scipy import ndimage
 
-from hippo._checks import check_seed
 from hippo.progress import Progress
-from hippo.sim import arenas
-from hippo.tasks.explore import arena_tour
 from hippo.tasks.patrol_report import PASS_RADIUS, pass_report, patrol_rounds
+from hippo.tasks.patrol_sets import (
+    ARENA_CHECKPOINTS,
+    HIREL_WAITS,
+    ROUTE_KINDS,
+    TOUR_REACH,
+    check_patrol,
+    choose_route,
+    patrol_route,
+    random_patrol,
+)
 from hippo.tasks.routes import LapCounter, Route, lead_from
 from hippo.tasks.session import Session
 from hippo.tasks.teaching import lessons_again
@@ -38,24 +42,6 @@ __all__ = [
     "ARENA_CHECKPOINTS", "HIREL_WAITS", "ROUTE_KINDS", "TOUR_REACH", "PatrolCourse", "PatrolPhase",
     "check_patrol", "choose_route", "pass_report", "patrol_rounds", "patrol_route", "random_patrol",
 ]
-
-#: the arenas a patrol runs in, with their default checkpoints (cm): patrol-course's are its
-#: landmarks checkpoint-1..3 on the corridor loop; the others' were placed in distinct parts
-#: of each arena (room A and both ends of room B; three corridors of the goal arena; three
-#: maze cells on a 650 cm round trip from the start)
-ARENA_CHECKPOINTS: dict[str, list[tuple[float, float]]] = {
-    "patrol-course": [(80.0, 11.0), (140.0, 56.0), (50.0, 105.0)],
-    "two-rooms": [(15.0, 65.0), (90.0, 20.0), (100.0, 70.0)],
-    "goal-arena": [(85.0, 15.0), (132.0, 76.0), (45.0, 136.0)],
-    "maze": [(20.0, 20.0), (140.0, 140.0), (220.0, 60.0)],
-}
-#: HIREL's three checkpoint waits (s); with n checkpoints the first n are the defaults
-HIREL_WAITS = [24.1, 19.1, 11.6, 16.0]
-#: how a patrol route is built (:func:`patrol_route`)
-ROUTE_KINDS = ("auto", "shortest", "tour")
-#: a wall tour is a patrol's route only if it passes this close to every checkpoint (chosen
-#: when the lesson held the robot within 20 cm of a checkpoint; it now allows PASS_RADIUS)
-TOUR_REACH = 20.0
 
 
 class PatrolPhase(IntEnum):
@@ -67,121 +53,6 @@ class PatrolPhase(IntEnum):
     ADAPTATION = 5
     KIDNAP = 6
     DEPLOYMENT = 7
-
-
-def patrol_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
-                 kind: str = "auto") -> Route:
-    """The leash route of :func:`choose_route`."""
-    return choose_route(arena_name, checkpoints, kind)[1]
-
-
-def choose_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
-                 kind: str = "auto") -> tuple[str, Route]:
-    """``(what it is, the leash route)``: ``"course"``, patrol-course's corridor loop for its
-    own checkpoints; else by ``kind``: ``"shortest"``, the shortest paths through the
-    checkpoints and back (:meth:`Route.through`, 8 cm clear of walls where it can); ``"tour"``,
-    a wall follower's loop (:func:`hippo.tasks.wall_tour`, right wall first) within
-    ``TOUR_REACH`` cm of every checkpoint; ``"auto"``: the shortest paths if they make a loop
-    (:attr:`Route.winding` not 0) that one of the arena's two wall tours runs the same way
-    round, else a tour that goes round something and passes every checkpoint, else the
-    shortest. The robot moves along a wall (:func:`hippo.tasks.wall_side`), and in
-    ``goal-arena`` no wall goes round clockwise (the right wall follower turns back at the
-    south nook), so a clockwise route was run backwards (tuning seeds 0-15, learned cells:
-    65 of 149 passes with a stop, against 190 of 254 with the tour, visited the other way).
-    Two-rooms' shortest paths run out and back (a maze's, and its tours, too)."""
-    if kind not in ROUTE_KINDS:
-        raise ValueError(f"route kind must be one of {', '.join(ROUTE_KINDS)}, got {kind!r}")
-    if arena_name == "patrol-course" and [tuple(map(float, c)) for c in checkpoints] == \
-            ARENA_CHECKPOINTS["patrol-course"]:
-        return "course", Route(arenas.loop_waypoints())
-    route = None
-    if kind != "tour":
-        route = Route.through(arenas.get(arena_name), checkpoints, clearance=8.0)
-        if kind == "shortest":
-            return "shortest", route
-    tours = [t for t in (arena_tour(arena_name, side) for side in (-1, 1)) if t is not None]
-    if route is not None and route.winding != 0 and any(t.winding == route.winding
-                                                        for t in tours):
-        return "shortest", route
-    for tour in tours:
-        if all(tour.distance(*c) <= TOUR_REACH for c in checkpoints) and \
-                (kind == "tour" or tour.winding != 0):
-            return "tour", tour
-    if route is not None:
-        return "shortest", route
-    far = min(([c for c in checkpoints if t.distance(*c) > TOUR_REACH] for t in tours),
-              key=len, default=list(checkpoints))
-    raise ValueError(f"no wall tour of arena {arena_name!r} passes within {TOUR_REACH:g} cm of "
-                     f"checkpoint(s) {', '.join(f'({x:g}, {y:g})' for x, y in far)}")
-
-
-def _home_floor(arena: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The arena's free-floor grid ``(xs, ys, mask)``: cells the robot reaches from the start."""
-    xs, ys, free = arena.free_grid(3.7)
-    parts, _ = ndimage.label(free)
-    return xs, ys, parts == parts[np.argmin(np.abs(xs - arena.start_pose[0])),
-                                  np.argmin(np.abs(ys - arena.start_pose[1]))]
-
-
-def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
-                 waits: Sequence[float], kind: str = "auto") -> Route:
-    """Raise ``ValueError`` naming the problem unless the checkpoints lie on free floor of the
-    arena (6 cm clear of every wall) that the robot can reach from the arena's start, are
-    reachable from each other and are at least
-    ``2 * PASS_RADIUS`` + 10 cm apart along the route, with one wait per checkpoint; returns
-    the route."""
-    arena = arenas.get(arena_name)
-    if len(waits) != len(checkpoints):
-        raise ValueError(f"got {len(waits)} waits for {len(checkpoints)} checkpoints; give "
-                         "one wait per checkpoint")
-    xs, ys, home = _home_floor(arena)
-    for x, y in checkpoints:
-        if not arena.is_free(x, y, 6.0):
-            raise ValueError(f"checkpoint ({x:g}, {y:g}) is not free floor of arena "
-                             f"{arena_name!r} ({arena.width:g} x {arena.height:g} cm; a "
-                             "checkpoint needs 6 cm clear of every wall)")
-        if not home[np.argmin(np.abs(xs - x)), np.argmin(np.abs(ys - y))]:
-            raise ValueError(f"checkpoint ({x:g}, {y:g}) cannot be reached from the start of "
-                             f"arena {arena_name!r} (it lies inside walls)")
-    route = patrol_route(arena_name, checkpoints, kind)
-    s = sorted(route.progress(x, y) for x, y in checkpoints)
-    gaps = np.diff([*s, s[0] + route.length])
-    if gaps.min() < 40.0:
-        raise ValueError(f"two checkpoints are {gaps.min():.0f} cm apart along the route; "
-                         f"they need 40 cm (a pass is {PASS_RADIUS:g} cm either side)")
-    return route
-
-
-def random_patrol(arena_name: str, n: int, seed: int, *, waits: tuple[float, float] = (8.0, 30.0),
-                  clearance: float = 10.0, tries: int = 2000
-                  ) -> tuple[list[tuple[float, float]], list[float]]:
-    """``n`` checkpoints and their waits nobody chose: points drawn at random (generator
-    ``seed``) on the floor the robot can reach (``clearance`` cm from every wall, on a 2 cm
-    grid), at least 40 cm apart, until a set passes :func:`check_patrol` (40 cm apart along
-    its route); waits drawn uniformly from ``waits`` (s, to 0.1 s). For held-out tests of a
-    patrol in any arena."""
-    if not 2 <= n <= 4:
-        raise ValueError(f"n must be 2 to 4 checkpoints, got {n!r}")
-    arena = arenas.get(arena_name)
-    rng = np.random.default_rng(check_seed("seed", seed))
-    xs, ys, home = _home_floor(arena)
-    _, _, roomy = arena.free_grid(clearance)
-    i, j = np.nonzero(roomy & home)
-    floor = np.column_stack([xs[i], ys[j]])
-    for _ in range(tries):
-        pick = floor[rng.choice(len(floor), size=n, replace=False)]
-        w = [float(np.round(v, 1)) for v in rng.uniform(*waits, size=n)]
-        gaps = np.hypot(*(pick[:, None] - pick[None]).transpose(2, 0, 1))
-        if gaps[np.triu_indices(n, 1)].min() < 40.0:
-            continue
-        cps = [(float(x), float(y)) for x, y in pick]
-        try:
-            check_patrol(arena_name, cps, w)
-        except ValueError:
-            continue
-        return cps, w
-    raise ValueError(f"no {n} checkpoints 40 cm apart along a route found in arena "
-                     f"{arena_name!r} after {tries} tries")
 
 
 class PatrolCourse:

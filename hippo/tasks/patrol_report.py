@@ -13,7 +13,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from hippo.tasks.routes import Route, route_passes
+from hippo.tasks.passes import route_passes
+from hippo.tasks.routes import Route
 
 __all__ = ["PASS_RADIUS", "pass_report", "patrol_rounds"]
 

@@ -4,7 +4,8 @@
   winner's is active and it restarts at each sensory event.
 - :class:`NLMS` and the rule's functions (``nlms.py``): HIREL eq. 1-3.
 - :class:`TransitionCells` (``transitions.py``): learn ``(a, b)`` with its delay; predictions,
-  learned delays and the ``delay_over`` flag the agent uses to end a wait.
+  learned delays and the ``delay_over`` flag the agent uses to end a wait; their parameters
+  and per-tick records in ``transition_params.py``.
 - :class:`TimingChain` (``chain.py``): batteries -> transition cells -> non-occurrence, wired
   once (the brain and the symbolic trials step it).
 - :class:`NonOccurrence` (``non_occurrence.py``): a predicted event is overdue.
@@ -24,12 +25,8 @@ from hippo.timing.chain import TimingChain, TimingStep
 from hippo.timing.nlms import NLMS, NLMSParams, learning_modulation, nlms_update, sliding_mean
 from hippo.timing.non_occurrence import NonOccurrence, NonOccurrenceParams
 from hippo.timing.spectral import BatteryState, SpectralParams, SpectralTiming
-from hippo.timing.transitions import (
-    DelayRangeWarning,
-    TransitionCells,
-    TransitionParams,
-    TransitionReadout,
-)
+from hippo.timing.transition_params import DelayRangeWarning, TransitionParams, TransitionReadout
+from hippo.timing.transitions import TransitionCells
 
 __all__ = [
     "NLMS",

@@ -21,7 +21,8 @@ from dataclasses import dataclass
 
 from hippo.timing.non_occurrence import NonOccurrence, NonOccurrenceParams
 from hippo.timing.spectral import BatteryState, SpectralParams, SpectralTiming
-from hippo.timing.transitions import TransitionCells, TransitionParams, TransitionReadout
+from hippo.timing.transition_params import TransitionParams, TransitionReadout
+from hippo.timing.transitions import TransitionCells
 
 __all__ = ["TimingChain", "TimingStep"]
 

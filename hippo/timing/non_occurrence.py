@@ -10,7 +10,7 @@ Public API
 
 ``predictions`` maps a key (any hashable; transitions use ``(a, b)``) to either
 
-* a :class:`~hippo.timing.transitions.TransitionReadout` — **timed rule**: fire when the
+* a :class:`~hippo.timing.transition_params.TransitionReadout` — **timed rule**: fire when the
   transition is predicted (``strength >= min_peak``) and the population readout of the elapsed
   time passes the learned delay by a tolerance, ``elapsed_fraction >= 1 + max(rel_tolerance,
   abs_tolerance / learned_delay)``; or

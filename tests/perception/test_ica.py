@@ -7,7 +7,8 @@ import warnings
 import numpy as np
 import pytest
 
-from hippo.perception.ica import FastICA, ICAConvergenceWarning, ICAParams, score_outputs
+from hippo.perception.ica import FastICA, ICAConvergenceWarning, score_outputs
+from hippo.perception.ica_params import ICAParams
 
 
 def amari_index(P: np.ndarray) -> float:

@@ -18,8 +18,10 @@ import pytest
 from hippo._estimator import NotFittedError
 from hippo.io import CorruptFileError, save_npz
 from hippo.perception import RCSFAICA
-from hippo.perception.ica import FastICA, ICAConvergenceWarning, ICAParams
-from hippo.perception.reservoir import Reservoir, ReservoirParams
+from hippo.perception.ica import FastICA, ICAConvergenceWarning
+from hippo.perception.ica_params import ICAParams
+from hippo.perception.reservoir import Reservoir
+from hippo.perception.reservoir_params import ReservoirParams
 from hippo.perception.sfa import SFA, SFAParams
 
 

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from hippo.perception.relocate import RelocaliserParams, SequenceRelocaliser
-from hippo.perception.reservoir import Reservoir, ReservoirParams
+from hippo.perception.reservoir import Reservoir
+from hippo.perception.reservoir_params import ReservoirParams
 
 
 def _reservoir() -> Reservoir:

@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
+from hippo.perception.reservoir import Reservoir
+from hippo.perception.reservoir_params import ReservoirParams, expand_leak
 
 
 def _inputs(T=300, n=8, seed=0):

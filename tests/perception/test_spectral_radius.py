@@ -6,7 +6,8 @@ import scipy.sparse.linalg as sla
 
 from hippo._threads import blas_threads
 from hippo.perception import spectral_radius as spectral
-from hippo.perception.reservoir import Reservoir, ReservoirParams, expand_leak
+from hippo.perception.reservoir import Reservoir
+from hippo.perception.reservoir_params import ReservoirParams, expand_leak
 from hippo.perception.spectral_radius import dense_spectral_radius, spectral_radius
 
 

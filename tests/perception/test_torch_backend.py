@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from hippo.perception.place_cells import RCSFAICA
-from hippo.perception.reservoir import Reservoir, ReservoirParams
+from hippo.perception.reservoir import Reservoir
+from hippo.perception.reservoir_params import ReservoirParams
 
 torch = pytest.importorskip("torch")
 

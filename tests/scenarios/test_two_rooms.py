@@ -105,7 +105,7 @@ def test_seeds_parser():
 def test_kidnapped_run_replays_the_clean_run_until_the_first_kidnap():
     import numpy as np
 
-    from hippo.scenarios.two_rooms import kidnapped_recording
+    from hippo.scenarios._two_rooms_recordings import kidnapped_recording
     from hippo.sim import arenas
     from hippo.sim.record import record
 
@@ -199,7 +199,8 @@ def test_ica_on_the_two_slowest_features_recovers_the_slow_binary_source():
     landmark of one room) and three fast sources. FastICA on the two slowest SFA outputs gives
     the room back (|r| 0.992) as the slowest unit (the choice that needs no labels); FastICA
     on four SFA outputs mixes the bursts in (|r| 0.971)."""
-    from hippo.perception.ica import FastICA, ICAParams
+    from hippo.perception.ica import FastICA
+    from hippo.perception.ica_params import ICAParams
     from hippo.perception.sfa import SFA, SFAParams
     from hippo.scenarios._two_rooms_report import _slowness
 

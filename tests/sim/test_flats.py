@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from hippo.sim.arena import ArenaBuilder
+from hippo.sim.builder import ArenaBuilder
 from hippo.sim.flats import (
     RoomSpec,
     congruent,

@@ -87,7 +87,7 @@ def test_bad_input_is_named():
 def test_the_timed_rule_fires_once_after_the_tolerance_and_says_so_in_fired():
     # N = [tau_hat / T_hat >= 1 + max(r, a / T_hat)]: T_hat = 10 s, r = 0.05, a = 0.6 s ->
     # fires at the first elapsed fraction >= 1.06, once; ``fired`` lists it at that tick only
-    from hippo.timing.transitions import TransitionReadout
+    from hippo.timing.transition_params import TransitionReadout
 
     nonocc = NonOccurrence(NonOccurrenceParams(rel_tolerance=0.05, abs_tolerance=0.6))
 

@@ -15,7 +15,7 @@ import pytest
 
 from hippo.timing import SpectralTiming, TransitionCells, TransitionParams
 from hippo.timing.nlms import learning_modulation, nlms_update
-from hippo.timing.transitions import TransitionReadout
+from hippo.timing.transition_params import TransitionReadout
 
 
 def plain_code(timing: SpectralTiming, v: np.ndarray) -> float:
