@@ -22,6 +22,7 @@ here use it (parameters in :class:`~hippo.brain_params.BrainParams`):
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 from hippo.types import Mode, StateKind
@@ -47,14 +48,11 @@ class RunupRules:
     _reanchor: bool = False                     # carried, drives kept: no anchor yet
     _due_anchor: tuple[str, float] | None = None  # (drive, time) a passed stop was due
 
-    def wait_drive(self) -> int:  # provided by the Decider
-        raise NotImplementedError
-
-    def _wanted(self, name: str) -> bool:  # provided by the Decider
-        raise NotImplementedError
-
-    def _taught_stops(self, name: str) -> Any:  # provided by the Decider
-        raise NotImplementedError
+    # provided by the Decider and its WaitRules (annotations only: a method stub here would
+    # shadow WaitRules.wait_drive wherever this class came first among the Decider's bases)
+    wait_drive: Callable[[], int]
+    _wanted: Callable[[str], bool]
+    _taught_stops: Callable[[str], Any]
 
     def lifted_with_drives(self) -> None:
         """The robot was carried in the middle of a task with its held drives kept: the next

@@ -32,7 +32,7 @@ place that wins where it stops does win there.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import Any
 
 from hippo.types import Mode, StateKind
@@ -62,14 +62,11 @@ class SoftRecognition:
     #: (C, still@C) -> {place W: (due stops made while W won, mean time from entering W)}
     _companions: dict[tuple[int, int], dict[int, tuple[int, float]]] | None = None
 
-    def _wanted(self, name: str) -> bool:  # provided by the Decider
-        raise NotImplementedError
-
-    def _activity(self, tr: Any) -> float:  # provided by the Decider
-        raise NotImplementedError
-
-    def wait_drive(self) -> int:  # provided by the Decider
-        raise NotImplementedError
+    # provided by the Decider and its WaitRules (annotations only, no stubs that could
+    # shadow them)
+    _wanted: Callable[[str], bool]
+    _activity: Callable[[Any], float]
+    wait_drive: Callable[[], int]
 
     def recognise_stop(self) -> None:
         """Approach a wanted stop whose place ``C`` is coactive, or whose alias was just
