@@ -10,9 +10,12 @@ drawing more from one never shifts another::
 
 Each stream is ``numpy.random.default_rng(SeedSequence([seed, key]))`` with a fixed ``key`` per
 name (:data:`STREAMS`): a ``SeedSequence`` of the pair, so streams are independent and the
-same seed always gives the same run. The keys are the ones hippo's scenarios have always used,
-so their numbers did not change when the streams got names; a new consumer takes a new key
-in :data:`STREAMS`.
+same seed always gives the same run. Keys 1-9 are the ones hippo's scenarios used before the
+streams got names, so those runs did not change; the two-rooms kidnaps (which had shared key 7
+with the brain) and the timing demo's trials (keys 0, 1, 2 … per delay, shared with the
+recording and the exploration) took keys of their own. A new consumer takes a new key in
+:data:`STREAMS`; ``sequence(name, i)`` gives independent sub-streams (one per trial or
+condition) of one name.
 """
 
 from __future__ import annotations
@@ -29,6 +32,11 @@ STREAMS: dict[str, int] = {
     "brain": 7,           # the brain's choices (exploring known moves, planner ties)
     "motor-explore": 8,   # the motor layer's exploring wall follower
     "motor-steer": 9,     # the motor layer's wall-guided steering
+    "fault-sets": 11,     # which sensors die in a scenario's fault curve
+    "sensor-faults": 13,  # the noise of injected sensor faults (one sub-stream per condition)
+    "kidnaps": 23,        # where and when a place-cell scenario kidnaps the robot
+    "timing-trials": 29,  # the jitter of the timing demo's trials (one sub-stream per delay)
+    "timing-pipeline": 31,  # the timing demo's place-preference trials through the brain
 }
 
 
@@ -45,13 +53,22 @@ class Seeds:
         """The world's seed (its own generator: sensor and odometry noise)."""
         return self.seed
 
-    def sequence(self, name: str) -> np.random.SeedSequence:
-        """The ``SeedSequence`` of stream ``name``."""
+    def sequence(self, name: str, *sub: int) -> np.random.SeedSequence:
+        """The ``SeedSequence`` of stream ``name``; ``sub`` indices name independent
+        sub-streams of it (one per condition or trial), the children ``spawn`` would make.
+        (Not ``[seed, key, i]``: a ``SeedSequence`` ignores trailing zero words, so sub-stream
+        0 would be the stream itself.)"""
         if name not in STREAMS:
             raise KeyError(f"unknown random stream {name!r}; known: {', '.join(STREAMS)} "
                            "(a new consumer adds its name and key to hippo.seeds.STREAMS)")
-        return np.random.SeedSequence([self.seed, STREAMS[name]])
+        bad = [i for i in sub if isinstance(i, bool) or not isinstance(i, int | np.integer)
+               or i < 0]
+        if bad:
+            raise ValueError(f"sub-stream indices must be integers >= 0, got {bad}")
+        return np.random.SeedSequence([self.seed, STREAMS[name]],
+                                      spawn_key=tuple(map(int, sub)))
 
-    def generator(self, name: str) -> np.random.Generator:
-        """A fresh generator of stream ``name`` (the same numbers on every call)."""
-        return np.random.default_rng(self.sequence(name))
+    def generator(self, name: str, *sub: int) -> np.random.Generator:
+        """A fresh generator of stream ``name`` (sub-stream ``sub``; the same numbers on
+        every call)."""
+        return np.random.default_rng(self.sequence(name, *sub))

@@ -93,3 +93,29 @@ def test_named_seed_streams_are_independent_and_reproducible():
         s.generator("teacher")
     with pytest.raises(ValueError, match="seed"):
         Seeds(-1)
+
+
+def test_seed_sub_streams_are_independent_and_no_scenario_numbers_a_stream_by_hand():
+    import re
+    from pathlib import Path
+
+    from hippo.seeds import STREAMS, Seeds
+
+    s = Seeds(3)
+    a, b = s.generator("sensor-faults", 0).random(4), s.generator("sensor-faults", 1).random(4)
+    assert not np.allclose(a, b)
+    np.testing.assert_array_equal(a, Seeds(3).generator("sensor-faults", 0).random(4))
+    # a sub-stream is the child that spawning the stream makes, never the stream itself
+    child = np.random.SeedSequence([3, STREAMS["sensor-faults"]]).spawn(2)[1]
+    np.testing.assert_array_equal(b, np.random.default_rng(child).random(4))
+    assert not np.allclose(a, s.generator("sensor-faults").random(4))
+    for bad in (-1, 1.5, True):
+        with pytest.raises(ValueError, match="sub-stream"):
+            s.sequence("kidnaps", bad)
+    # every stream of a run comes from hippo.seeds: no scenario or task numbers one by hand
+    root = Path(__file__).resolve().parents[1] / "hippo"
+    hand = [f"{p.relative_to(root)}:{i + 1}" for p in root.rglob("*.py")
+            if p.parent.name in ("scenarios", "tasks")
+            for i, line in enumerate(p.read_text().splitlines())
+            if re.search(r"default_rng\(\[|seed=\[", line)]
+    assert hand == []

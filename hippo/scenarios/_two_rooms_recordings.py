@@ -11,6 +11,7 @@ import numpy as np
 
 from hippo.io import load_json, save_json
 from hippo.scenarios._common import cached_recording
+from hippo.seeds import Seeds
 from hippo.sim.arena import Arena
 from hippo.sim.controllers import WallFollower, WallFollowerParams
 from hippo.sim.record import Recording, record
@@ -44,7 +45,7 @@ def kidnapped_recording(arena: Arena, ticks: int, n_train: int, *, seed: int, rh
     robot's room (the wall follower sometimes walks back to its room on its own before it is
     put back; such a "kidnap" changes nothing and is left out of the recovery statistics).
     """
-    rng = np.random.default_rng([seed, 7])
+    rng = Seeds(seed).generator("kidnaps")
     kid: list[tuple[int, tuple[float, float, float]]] = []
     events, kinds, moved = [], [], []
     test_len = ticks - n_train
@@ -53,13 +54,13 @@ def kidnapped_recording(arena: Arena, ticks: int, n_train: int, *, seed: int, rh
     world = World(arena, sensors="ir8", seed=seed)
     world.reset(seed)
     ctrl = WallFollower(WallFollowerParams(rho=rho), sensors=world.sensors, robot=world.robot,
-                        rng=np.random.default_rng([seed, 1]))
+                        rng=Seeds(seed).generator("recording"))
     plan = {}
     for away, back in zip(KIDNAP_AWAY, KIDNAP_BACK):
         if back < test_len:
             plan[n_train + away] = "away"
             plan[n_train + back] = "back"
-    obs = world._observe(np.zeros(3), 0.0, False)
+    obs = world.observe()
     taken: tuple[float, float, float] | None = None
     room = ""
     for k in range(max(plan, default=-1) + 1):
@@ -77,7 +78,7 @@ def kidnapped_recording(arena: Arena, ticks: int, n_train: int, *, seed: int, rh
             kid.append((k, dest))
             events.append(k)
             world.place_robot(*dest)
-            obs = world._observe(np.zeros(3), 0.0, False)
+            obs = world.observe()
         obs = world.step(ctrl.act(obs))
     rec = record(arena, ticks, seed=seed, rho=rho, sensors="ir8", kidnaps=kid, progress=False)
     return rec, events, kinds, moved
@@ -89,7 +90,8 @@ def _recordings(args: argparse.Namespace, arena, ticks: int, n_train: int, seed:
     tag = f"two-rooms_t{ticks}_rho{args.rho:g}_s{seed}"
     rec = cached_recording(args.cache, tag, lambda: record(
         arena, ticks, seed=seed, rho=args.rho, sensors="ir8", desc=f"two-rooms seed {seed}"))
-    meta_path = Path(args.cache) / f"{tag}_kid.json" if args.cache else None
+    # "_kid2": kidnaps drawn from the named "kidnaps" stream (before: an unnamed key)
+    meta_path = Path(args.cache) / f"{tag}_kid2.json" if args.cache else None
     if meta_path is not None and meta_path.exists():
         meta = load_json(meta_path)
         rec_kid = Recording.load(meta_path.with_suffix(".npz"))

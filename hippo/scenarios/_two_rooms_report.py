@@ -17,6 +17,7 @@ from hippo.perception import RCSFAICA, ICAConvergenceWarning, fit_leak_sweep
 from hippo.perception import metrics as M
 from hippo.perception.sensor_guard import SensorGuard
 from hippo.scenarios._common import mean_sd, sfa_cutoff
+from hippo.seeds import Seeds
 from hippo.sim.faults import SensorFaults
 from hippo.sim.record import Recording
 
@@ -206,7 +207,7 @@ FAULT_TARGETS = {1: 0.90, 2: 0.80, "noise_0.1": 0.93}
 def _fault_conditions(n_sensors: int, seed: int, quick: bool) -> list[SensorFaults]:
     """Dead-sensor sets: every single sensor, and random pairs and triples, in each mode; and
     every noise level. The sets depend only on ``seed``."""
-    rng = np.random.default_rng([seed, 11])
+    rng = Seeds(seed).generator("fault-sets")
     n_sets = 2 if quick else 3
     sets: list[tuple[int, ...]] = [()]
     sets += [(i,) for i in range(n_sensors)][: n_sets if quick else None]
@@ -234,7 +235,7 @@ def _fault_curve(model: RCSFAICA, U: np.ndarray, rooms: dict[str, np.ndarray], n
     W = guard.params.window
     rows = []
     for j, faults in enumerate(_fault_conditions(U.shape[1], seed, quick)):
-        Ut = faults.apply(U[te], seed=[seed, 13, j])
+        Ut = faults.apply(U[te], seed=Seeds(seed).generator("sensor-faults", j))
         for variant in ("raw", "guard"):
             if variant == "guard":
                 Ut_v = guard.clean(np.concatenate([U[n_train - W:n_train], Ut]))[W:]

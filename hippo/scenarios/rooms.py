@@ -59,6 +59,7 @@ from hippo.scenarios._selection import (
     select_setting,
     selection_summary,
 )
+from hippo.seeds import Seeds
 from hippo.sim.flats import random_flat, room_names
 from hippo.sim.record import Recording, record
 
@@ -144,7 +145,7 @@ def _kidnapped_run(arena, rec: Recording, n_train: int, test_len: int, seed: int
                    rooms: list[str], cache) -> tuple[Recording, list[int]]:
     """An unseen test run from the pose at the end of training, kidnapped every 500 ticks to a
     random free pose of a random room."""
-    rng = np.random.default_rng([seed, 23])
+    rng = Seeds(seed).generator("kidnaps")
     kid = []
     for k in range(150, test_len, KIDNAP_EVERY):
         target = rooms[int(rng.integers(len(rooms)))]

@@ -32,6 +32,7 @@ from hippo.io import save_npz
 from hippo.plots.timing import plot_fig6, plot_reproduction
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
+from hippo.seeds import Seeds
 from hippo.timing import TransitionParams
 from hippo.timing.chain import TimingChain
 from hippo.timing.trials import TrialTrace, reproduce, run_trial
@@ -141,7 +142,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     pairings = args.pairings if args.pairings is not None else (3 if quick else 5)
     delays = args.delays or list(QUICK_DELAYS if quick else FULL_DELAYS)
     n_rep = args.reproductions if args.reproductions is not None else (2 if quick else 6)
-    rng = np.random.default_rng(args.seed)
+    rng = Seeds(args.seed).generator("timing-pipeline")
 
     # --- Fig. 6 a-b: place preference through the whole pipeline
     pipe = _Pipeline()
@@ -160,7 +161,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     for i, d in enumerate(delays):
         chain = TimingChain()
         tc = chain.cells
-        r = np.random.default_rng([args.seed, i])
+        r = Seeds(args.seed).generator("timing-trials", i)
         for _ in range(pairings):
             run_trial(chain, 0, 1, d, dt=DT, jitter=args.jitter, rng=r, other=2)
         probe = run_trial(chain, 0, 1, None, dt=DT, jitter=0.0, t_max=2.0 * d, other=2)
