@@ -142,6 +142,26 @@ def numbers(count: int | tuple[int, int] | None = None, lo: float | None = None,
     return parse
 
 
+def distinct_integers(lo: int | None = None, hi: int | None = None
+                      ) -> Callable[[str], list[int]]:
+    """One or more distinct integers separated by commas, each in ``[lo, hi]``."""
+    one = integer(lo, hi)
+    allowed = f"distinct comma-separated integers {_bounds(lo, hi)}"
+
+    def parse(text: str) -> list[int]:
+        parts = [p for p in text.split(",") if p.strip()]
+        try:
+            values = [one(p) for p in parts]
+        except argparse.ArgumentTypeError:
+            raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}") from None
+        if not values or len(set(values)) != len(values):
+            raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}")
+        return values
+
+    parse.__name__ = "integers"
+    return parse
+
+
 def points(count: tuple[int, int], unit: str = "") -> Callable[[str], list[tuple[float, float]]]:
     """Points ``'x,y;x,y;...'`` (between ``count[0]`` and ``count[1]`` of them), finite
     numbers."""

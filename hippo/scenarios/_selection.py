@@ -10,21 +10,24 @@ correlation with the labelled accuracy is reported next to the choice."""
 from __future__ import annotations
 
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
 
 from hippo.perception import ICAConvergenceWarning
 from hippo.perception.place_cell_params import RCSFAICAParams
-from hippo.perception.selection import CRITERIA, rank_correlation, select_leak
+from hippo.perception.selection import (
+    CRITERIA,
+    DEFAULT_CRITERION,
+    rank_correlation,
+    select_leak,
+)
 from hippo.scenarios._common import mean_sd
 
 SLOW = (0.03, 0.05, 0.08, 0.11)     # leak of the first half of the neurons
 FAST = (0.14, 0.15, 0.2, 0.3)       # leak of the second half
 CANDIDATES = [(a, b) for a in SLOW for b in FAST]
-#: the criterion ``--select`` uses (chosen on tuning seeds, see the README row)
-DEFAULT_CRITERION = "slow-stable"
 #: held-out seeds are compared with the fixed settings in groups of this many
 GROUP = 5
 
@@ -33,24 +36,38 @@ __all__ = ["CANDIDATES", "CRITERIA", "DEFAULT_CRITERION", "select_setting", "sel
 
 def select_setting(U: np.ndarray, n_train: int, base: RCSFAICAParams,
                    labelled: Callable[[np.ndarray], float], criterion: str = DEFAULT_CRITERION,
-                   paper: tuple[float, float] = (0.05, 0.15)) -> dict[str, Any]:
-    """Choose a leak pair for the recording ``U`` from its first ``n_train`` ticks alone; then
-    (analysis) score every candidate fitted on those ticks with ``labelled(Y)``, ``Y`` the
-    candidate's outputs over all of ``U`` (``paper``'s score is kept beside the chosen one's:
-    both fitted the same way)."""
+                   paper: tuple[float, float] = (0.05, 0.15), paper_units: int | None = None,
+                   units: Sequence[int] | None = None) -> dict[str, Any]:
+    """Choose a leak pair (and, with ``units``, a number of SFA/ICA units among them) for the
+    recording ``U`` from its first ``n_train`` ticks alone; then (analysis) score every
+    candidate fitted on those ticks with ``labelled(Y)``, ``Y`` the candidate's outputs over
+    all of ``U`` (``paper``'s score, with ``paper_units`` units, default ``base``'s, is kept
+    beside the chosen one's when it is a candidate: both fitted the same way)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ICAConvergenceWarning)
-        sel = select_leak(U, CANDIDATES, base, criterion=criterion, n_rows=n_train)
-        acc = [labelled(sel.refit(b, n_train)._readout(sel.features.X[b]))
-               for b in range(len(CANDIDATES))]
+        sel = select_leak(U, CANDIDATES, base, criterion=criterion, n_rows=n_train,
+                          units=units)
+        X = sel.features.X
+        acc = [labelled(sel.refit(c, n_train)._readout(X[c % len(CANDIDATES)]))
+               for c in range(len(sel.candidates))]
     sel.features = None     # frees the harvested features
     i = int(np.nanargmax(acc))
+    ks = sel.units or [base.n_ica] * len(acc)
+    try:
+        k_paper = base.n_ica if paper_units is None else paper_units
+        p = ks.index(k_paper) + CANDIDATES.index(tuple(paper))   # its block, then its pair
+        paper_acc = acc[p]
+    except ValueError:       # the paper's pair or units are not among the candidates
+        paper_acc = float("nan")
     return {"criterion": criterion, "chosen": list(sel.best_candidate),
+            "chosen_units": int(ks[sel.best]),
+            "candidates": [[*map(float, c), int(k)] for c, k in zip(sel.candidates, ks)],
             "scores": sel.scores.tolist(), "labelled_accuracy": acc,
             "spearman": rank_correlation(sel.scores, acc),
             "chosen_accuracy_in_sweep": acc[sel.best],
-            "paper_accuracy_in_sweep": acc[CANDIDATES.index(tuple(paper))],
-            "best_by_labels": list(CANDIDATES[i]), "best_accuracy_in_sweep": acc[i]}
+            "paper_accuracy_in_sweep": paper_acc,
+            "best_by_labels": list(sel.candidates[i]), "best_units_by_labels": int(ks[i]),
+            "best_accuracy_in_sweep": acc[i]}
 
 
 def selection_summary(rows: list[dict[str, Any]], seeds: list[int],
@@ -73,6 +90,7 @@ def selection_summary(rows: list[dict[str, Any]], seeds: list[int],
     return {
         "criterion": rows[0]["criterion"], "candidates": [list(c) for c in CANDIDATES],
         "seeds": seeds, "chosen": [r["chosen"] for r in rows],
+        "chosen_units": [r.get("chosen_units") for r in rows],
         "spearman_per_seed": rho, "spearman_mean": mean_sd(rho)[0],
         "spearman_sd": mean_sd(rho)[1],
         "picked_accuracy": list(picked), "paper_accuracy": list(paper),

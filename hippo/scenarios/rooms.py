@@ -100,8 +100,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--ceiling", action=argparse.BooleanOptionalAction, default=True,
                         help="also report the supervised ceiling")
     parser.add_argument("--select", action=argparse.BooleanOptionalAction, default=False,
-                        help="choose the leak pair per flat from the recording alone (label-"
-                             "free criterion over 16 pairs) instead of --leak; report it")
+                        help="choose the leak pair (16 pairs) and the unit count (n or 2 n "
+                             "for n rooms, unless --units K) per flat from the recording "
+                             "alone, by a label-free criterion, instead of --leak; report it")
     parser.add_argument("--select-criterion", choices=CRITERIA, default=DEFAULT_CRITERION,
                         help="label-free criterion of --select")
     parser.add_argument("--figures", action=argparse.BooleanOptionalAction, default=True,
@@ -114,6 +115,9 @@ def _units(text: str) -> int | str:
 
 def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
     """Checks across arguments, before any work."""
+    if args.select and args.units == "auto":
+        parser.error("argument --units: 'auto' and --select each choose the unit count "
+                     "without labels; leave one out")
     if args.arenas is not None and not isinstance(args.seeds, int) \
             and len(args.seeds) < args.arenas:
         parser.error(f"argument --arenas: {args.arenas} flats need as many seeds; --seeds "
@@ -198,18 +202,19 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
     regions = None
     sel = None
     if getattr(args, "select", False):
-        # the leak pair chosen label-free, with the unit count of a plain run (2 x n for auto)
+        # the leak pair chosen label-free, and the unit count among n and 2 n (or --units K)
         k = args.units if isinstance(args.units, int) and args.units else 2 * n
         sel = select_setting(rec.sensors, n_train, RCSFAICA(params, n_sfa=k, n_ica=k).params,
                              lambda Y: _room_cells_mean(Y, lab, n_train, n),
-                             args.select_criterion, paper=tuple(args.leak))
+                             args.select_criterion, paper=tuple(args.leak), paper_units=k,
+                             units=(k,) if args.units else (n, 2 * n))
         params = RCSFAICA(params).set_params(leak=tuple(sel["chosen"])).params
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ICAConvergenceWarning)
         if args.units == "auto":
             model, regions = fit_for_world(rec.sensors[:n_train], params)
         else:
-            k = args.units or 2 * n
+            k = sel["chosen_units"] if sel is not None else args.units or 2 * n
             model = RCSFAICA(params, n_sfa=k, n_ica=k).fit(rec.sensors[:n_train])
     units = model.params.n_ica
     Y = model.transform(rec.sensors)
@@ -298,7 +303,8 @@ def run(args: argparse.Namespace) -> dict:
     metrics: dict[str, Any] = {
         "scenario": "rooms", "quick": quick, "n_rooms": args.n_rooms, "seeds": seeds,
         "seeds_note": "each seed is one generated flat, one exploration run and one reservoir",
-        "units": ([r["units"] for r in rows] if args.units == "auto"
+        "units": ([r["units"] for r in rows]
+                  if args.units == "auto" or getattr(args, "select", False)
                   else args.units or 2 * args.n_rooms), "leak": list(args.leak),
         "slow_pool": args.slow_pool,
         **{k: summary[k]["mean"] for k in keys},

@@ -47,7 +47,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo.cli_args import integer, probability, slow_pool
+from hippo.cli_args import distinct_integers, integer, probability, slow_pool
 from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
 from hippo.io import save_npz
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
@@ -90,6 +90,9 @@ PAPER_LEAK = (0.05, 0.15)
 #: the room cell's defaults, chosen on tuning seeds 0-9: leaks and SFA / ICA units
 ROOM_LEAK = (0.08, 0.15)
 ROOM_UNITS = 2
+#: SMC09's fixed settings, reported beside --select's pick
+SMC09_LEAK = (0.05, 0.15)
+SMC09_UNITS = 4
 #: the corridor cell keeps SMC09's 4 SFA / 4 ICA units (Fig. 8)
 CORRIDOR_UNITS = 4
 #: the test part (the last eighth) must hold the first kidnapping and the return (tick 400)
@@ -139,6 +142,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "beside SMC09's")
     parser.add_argument("--select-criterion", choices=CRITERIA, default=DEFAULT_CRITERION,
                         help="label-free criterion of --select")
+    parser.add_argument("--select-units", type=distinct_integers(1, 500),
+                        default=(ROOM_UNITS, SMC09_UNITS), metavar="K,K",
+                        help="SFA/ICA unit counts --select chooses among (default: "
+                             f"{ROOM_UNITS}, the room cell's, and {SMC09_UNITS}, SMC09's)")
     parser.add_argument("--hold", type=integer(1, 10_000), default=5,
                         help="recovered = right for this many consecutive ticks")
     parser.add_argument("--figures", action=argparse.BooleanOptionalAction, default=True,
@@ -176,6 +183,8 @@ def run(args: argparse.Namespace) -> dict:
     seeds = seed_list(args)
     n_train = ticks * 7 // 8
     configs = {"paper": tuple(args.leak), "corridor": CORRIDOR_LEAK}
+    # SFA / ICA units per configuration (the rest: --n-sfa, --n-ica)
+    units_of = {"corridor": (CORRIDOR_UNITS,) * 2, "smc09": (SMC09_UNITS,) * 2}
     per: dict[str, list[dict[str, Any]]] = {k: [] for k in configs}
     sel_rows: list[dict[str, Any]] = []
     keep: dict[str, dict[str, Any]] = {}
@@ -183,7 +192,7 @@ def run(args: argparse.Namespace) -> dict:
     first = None
     sweep_rows: list[dict[str, Any]] = []
     fault_rows: list[dict[str, Any]] = []
-    with Progress(len(seeds) * (len(configs) + args.select), "two-rooms fits") as bar:
+    with Progress(len(seeds) * (len(configs) + 3 * args.select), "two-rooms fits") as bar:
         for i, seed in enumerate(seeds):
             t0 = time.perf_counter()
             rec, rec_kid, events, kinds, moved = _recordings(args, arena, ticks, n_train, seed)
@@ -200,13 +209,16 @@ def run(args: argparse.Namespace) -> dict:
                                       ica_algorithm=args.ica_algorithm,
                                       sfa_cutoff=sfa_cutoff(args.sfa_cutoff),
                                       slow_pool=args.slow_pool).params
+                bar.update()      # the selection's sweep
                 sel_rows.append(select_setting(
                     U, n_train, base, lambda Y, r=rooms: _room_cell_accuracy(Y, r, n_train),
-                    args.select_criterion))
+                    args.select_criterion, paper=SMC09_LEAK, paper_units=SMC09_UNITS,
+                    units=args.select_units))
                 seed_configs["selected"] = tuple(sel_rows[-1]["chosen"])
+                seed_configs["smc09"] = SMC09_LEAK
+                units_of["selected"] = (sel_rows[-1]["chosen_units"],) * 2
             for name, leak in seed_configs.items():
-                units = ((CORRIDOR_UNITS,) * 2 if name == "corridor"
-                         else (args.n_sfa, args.n_ica))
+                units = units_of.get(name, (args.n_sfa, args.n_ica))
                 model = RCSFAICA.smc09(n_reservoir=neurons, leak=leak, seed=seed,
                                        n_sfa=units[0], n_ica=units[1],
                                        ica_restarts=restarts, ica_score=args.ica_score,
@@ -300,9 +312,12 @@ def run(args: argparse.Namespace) -> dict:
         metrics["faults"] = _fault_summary(fault_rows)
     if args.select:
         key = "room_cell_test_balanced_accuracy"
+        # the picked setting against SMC09's fixed one (4 units, 0.05/0.15), both fitted by
+        # the scenario on the whole training part
         metrics["selection"] = selection_summary(
-            sel_rows, seeds, [r[key] for r in per["selected"]], [r[key] for r in per["paper"]])
+            sel_rows, seeds, [r[key] for r in per["selected"]], [r[key] for r in per["smc09"]])
         metrics["selected"] = {k: summary("selected", k) for k in keys}
+        metrics["smc09"] = {k: summary("smc09", k) for k in keys}
     U = rec.sensors
     save_npz(out / "run.npz", dict(
         t=rec.t, x=rec.x, y=rec.y, label=rec.label, region=rec.region,

@@ -2,6 +2,7 @@
 
 import json
 
+import numpy as np
 import pytest
 
 from hippo.cli import run_scenario
@@ -43,17 +44,23 @@ def test_rooms_arguments():
 
 @pytest.mark.slow
 def test_rooms_select_quick(tmp_path):
-    """--select: the flat's leak pair is the one the label-free criterion chose, and the
-    flat's metrics are that setting's."""
+    """--select: the flat's leak pair and unit count (3 or 6 for 3 rooms) are the ones the
+    label-free criterion chose, and the flat's metrics are that setting's; --units K fixes
+    the count, and 'auto' with --select is refused (both would choose it)."""
     m = run_scenario("rooms", ["--quick", "--out", str(tmp_path), "--select", "--no-ceiling",
                                "--no-figures"])
     sel = m["selection"]
     run = sel["runs"][0]
     assert m["flats"][0]["leak"] == sel["chosen"][0] == run["chosen"]
-    assert len(run["scores"]) == 16 and -1 <= run["spearman"] <= 1
+    assert m["flats"][0]["units"] == run["chosen_units"] in (3, 6)
+    assert len(run["scores"]) == 32 and -1 <= run["spearman"] <= 1
+    c = int(np.argmin(run["scores"]))
+    assert run["candidates"][c] == [*run["chosen"], run["chosen_units"]]
     # picked and SMC09's pair, fitted alike over the sweep, both beat chance (0.5)
     assert sel["picked_accuracy"] == [run["chosen_accuracy_in_sweep"]]
     assert 0.5 < run["paper_accuracy_in_sweep"] <= 1 and 0.5 < run["chosen_accuracy_in_sweep"]
+    with pytest.raises(SystemExit):
+        run_scenario("rooms", ["--quick", "--select", "--units", "auto"])
 
 
 def test_rooms_slow_pool_off(tmp_path):

@@ -140,23 +140,29 @@ def test_fault_curve_guard_helps(tmp_path):
 
 @pytest.mark.slow
 def test_two_rooms_select_quick(tmp_path):
-    """--select: a leak pair chosen per seed without labels, with its rank correlation and
-    the picked vs SMC09 comparison in metrics.json."""
+    """--select: a leak pair and a unit count (2 or 4) chosen per seed without labels, with
+    its rank correlation and the picked vs SMC09 comparison in metrics.json."""
     from hippo.scenarios._selection import CANDIDATES
 
     m = run_scenario("two-rooms", ["--quick", "--out", str(tmp_path), "--select",
-                                   "--no-ceiling", "--no-figures", "--n-sfa", "4", "--n-ica", "4",
-                                   "--leak", "0.05,0.15"])
+                                   "--no-ceiling", "--no-figures"])
     sel = m["selection"]
-    assert sel["criterion"] == "slow-stable" and sel["seeds"] == [0]
-    assert tuple(sel["chosen"][0]) in CANDIDATES
+    assert sel["criterion"] == "bimodal-stable" and sel["seeds"] == [0]
+    assert tuple(sel["chosen"][0]) in CANDIDATES and sel["chosen_units"][0] in (2, 4)
     run = sel["runs"][0]
-    assert len(run["scores"]) == len(run["labelled_accuracy"]) == 16
-    assert run["chosen"] == list(CANDIDATES[int(np.argmin(run["scores"]))])
+    assert len(run["scores"]) == len(run["labelled_accuracy"]) == 32
+    c = int(np.argmin(run["scores"]))
+    assert run["chosen"] == list(CANDIDATES[c % 16]) and run["chosen_units"] == (2, 4)[c // 16]
     assert -1 <= sel["spearman_mean"] <= 1
-    # quick seed 0: every candidate's room cell is far above chance (0.68-0.97)
+    # quick seed 0: every candidate's room cell is far above chance
     assert min(run["labelled_accuracy"]) > 0.6
-    assert sel["paper_accuracy"] == [m["room_cell_test_balanced_accuracy"]]
+    # the comparison is with SMC09's fixed settings (4 units, 0.05/0.15) as the scenario fits
+    # them. (Not with the same candidate in the sweep: its features, harvested in a batch of
+    # 16, differ by ~4e-7, and 4-unit symmetric FastICA can land in another optimum: quick
+    # seed 0 gives 0.69 there against 0.96 for the plain fit.)
+    smc = m["smc09"]["room_cell_test_balanced_accuracy"]["per_seed"]
+    assert sel["paper_accuracy"] == smc
+    assert 0.5 < run["paper_accuracy_in_sweep"] <= 1
     assert sel["picked_accuracy"] == [m["selected"]["room_cell_test_balanced_accuracy"]
                                       ["per_seed"][0]]
     assert sel["groups"][0]["picked_minus_paper"] == pytest.approx(
