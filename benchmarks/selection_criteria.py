@@ -120,17 +120,17 @@ def one_seed(world: str, seed: int, cache: str | None, ticks: int | None, neuron
         A, B, C = F.moments(b, 0, h), F.moments(b, h, n_fit), F.moments(b, n_fit, n_train)
         AB = A.merged(B)
         full = F.fit(b, 0, n_train, AB.merged(C))
-        row = {"leak": list(lk), **_labelled(full._readout(X), lab, n_train)}
+        row = {"leak": list(lk), **_labelled(full.readout(X), lab, n_train)}
         m = F.fit(b, 0, n_fit, AB)
-        Yica, Ysfa = m._readout(X, return_sfa=True)
+        Yica, Ysfa = m.readout(X, return_sfa=True)
         row["slow_sfa"] = float(np.mean(normalised_slowness(Ysfa[val])))
         row["slow_ica"] = float(np.mean(normalised_slowness(Yica[val])))
         row["pred1"] = prediction_error(Ysfa, U, n_fit, n_train, horizon=1)
         row["pred10"] = prediction_error(Ysfa, U, n_fit, n_train, horizon=10)
         row["kurt_ica"] = -float(np.mean(np.abs(kurtosis(Yica[val], axis=0))))
         ha, hb = F.fit(b, 0, h, A), F.fit(b, h, n_fit, B)
-        Ia, Sa = ha._readout(X[val], return_sfa=True)
-        Ib, Sb = hb._readout(X[val], return_sfa=True)
+        Ia, Sa = ha.readout(X[val], return_sfa=True)
+        Ib, Sb = hb.readout(X[val], return_sfa=True)
         row["instab_ica"] = instability(Ia, Ib)
         row["instab_sfa"] = instability(Sa, Sb)
         row["slow_stable"] = row["slow_sfa"] * row["instab_sfa"]

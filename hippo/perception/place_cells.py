@@ -275,10 +275,14 @@ class RCSFAICA(SensorInputs, ParamsEstimator):
         else:
             self._R = None
             self._r0 = None
-            self._y_init = self._readout(np.zeros((1, d)))[0]
+            self._y_init = self.readout(np.zeros((1, d)))[0]
 
-    def _readout(self, X: np.ndarray, return_sfa: bool = False):
-        Y = self.sfa_.transform(X)
+    def readout(self, X: np.ndarray, return_sfa: bool = False):
+        """Place-cell activities for SFA inputs ``X`` (T, d) as :meth:`features` gives them
+        (``[u; x]``, with the slow pool ``[u; x; m]``): ICA of SFA, row by row. With
+        ``return_sfa`` also the SFA outputs."""
+        self._check_fitted()
+        Y = self.sfa_.transform(X)      # checks X's shape and values
         S = self.ica_.transform(Y)
         return (S, Y) if return_sfa else S
 
@@ -292,7 +296,7 @@ class RCSFAICA(SensorInputs, ParamsEstimator):
         self._check_fitted()
         U = self._check_U(U)
         X = self.features(U)
-        S, Y = self._readout(X, return_sfa=True)
+        S, Y = self.readout(X, return_sfa=True)
         f = int(self.params.downsample)
         if f > 1 and upsample:
             T = U.shape[0]
@@ -361,7 +365,7 @@ class RCSFAICA(SensorInputs, ParamsEstimator):
             z = u if res is None else np.concatenate([u, res.step(u)])
             if self._pool is not None:
                 z = np.concatenate([z, self._pool.step(z)])
-            out = self._readout(z[None, :])[0]
+            out = self.readout(z[None, :])[0]
         self._last = out
         return out.copy()
 

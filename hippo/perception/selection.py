@@ -289,13 +289,13 @@ def score_sweep(F: SweepFeatures, n_rows: int, criterion: str = DEFAULT_CRITERIO
             m = Fk.fit(b, 0, n_fit, A.merged(B))
             models.append(m)
             if criterion in ("bimodality", "bimodal-stable"):
-                s = bimodality(m._readout(Xv))
+                s = bimodality(m.readout(Xv))
                 if criterion == "bimodal-stable":
-                    s *= instability(Fk.fit(b, 0, h, A)._readout(Xv),
-                                     Fk.fit(b, h, n_fit, B)._readout(Xv))
+                    s *= instability(Fk.fit(b, 0, h, A).readout(Xv),
+                                     Fk.fit(b, h, n_fit, B).readout(Xv))
                 scores.append(s)
                 continue
-            Ysfa = m._readout(Fk.X[b][:n_rows], return_sfa=True)[1]
+            Ysfa = m.readout(Fk.X[b][:n_rows], return_sfa=True)[1]
             if criterion == "slowness":
                 scores.append(float(np.mean(normalised_slowness(Ysfa[val]))))
             else:

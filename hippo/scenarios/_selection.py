@@ -48,7 +48,7 @@ def select_setting(U: np.ndarray, n_train: int, base: RCSFAICAParams,
         sel = select_leak(U, CANDIDATES, base, criterion=criterion, n_rows=n_train,
                           units=units)
         X = sel.features.X
-        acc = [labelled(sel.refit(c, n_train)._readout(X[c % len(CANDIDATES)]))
+        acc = [labelled(sel.refit(c, n_train).readout(X[c % len(CANDIDATES)]))
                for c in range(len(sel.candidates))]
     sel.features = None     # frees the harvested features
     i = int(np.nanargmax(acc))

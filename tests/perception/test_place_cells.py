@@ -37,6 +37,18 @@ def test_fit_transform_shapes_and_scale(fitted):
     assert model.reservoir_.n_neurons == 120
 
 
+def test_readout_of_features_is_transform(fitted):
+    """``readout(features(U))`` is ``transform(U)`` (the two halves of it); a wrong width is
+    refused."""
+    model, U = fitted
+    Y, Ysfa = model.readout(model.features(U[:500]), return_sfa=True)
+    Y2, Ysfa2 = model.transform(U[:500], return_sfa=True)
+    np.testing.assert_allclose(Y, Y2, atol=1e-9)
+    np.testing.assert_allclose(Ysfa, Ysfa2, atol=1e-9)
+    with pytest.raises(ValueError, match="features"):
+        model.readout(U[:500])
+
+
 def test_transform_equals_step(fitted):
     model, U = fitted
     Y = model.transform(U[:600])
