@@ -51,7 +51,8 @@ def select_setting(U: np.ndarray, n_train: int, base: RCSFAICAParams,
         acc = [labelled(sel.refit(c, n_train).readout(X[c % len(CANDIDATES)]))
                for c in range(len(sel.candidates))]
     sel.features = None     # frees the harvested features
-    i = int(np.nanargmax(acc))
+    # no candidate scored (the test part never left one room): no best by labels
+    i = int(np.nanargmax(acc)) if np.isfinite(acc).any() else sel.best
     ks = sel.units or [base.n_ica] * len(acc)
     try:
         k_paper = base.n_ica if paper_units is None else paper_units

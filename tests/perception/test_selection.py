@@ -222,3 +222,16 @@ def test_each_criterion_scores_every_candidate(criterion):
                       n_ica=2, ica_restarts=1)
     assert sel.scores.shape == (3,) and np.all(np.isfinite(sel.scores))
     assert sel.scores[sel.best] == sel.scores.min() and sel.criterion == criterion
+
+
+def test_select_setting_survives_a_test_part_without_labels():
+    """A flat whose test part never leaves one room scores no candidate (NaN): the choice is
+    still made without labels and reported, with no best-by-labels (was: a crash)."""
+    from hippo.scenarios._selection import CANDIDATES, select_setting
+
+    U, _ = _slow_source(1500)
+    base = RCSFAICA.smc09(n_reservoir=20, n_sfa=2, n_ica=2, ica_restarts=1, seed=0).params
+    r = select_setting(U, 1200, base, lambda Y: float("nan"), units=(1, 2))
+    assert tuple(r["chosen"]) in CANDIDATES and r["chosen_units"] in (1, 2)
+    assert np.isnan(r["spearman"]) and np.isnan(r["best_accuracy_in_sweep"])
+    assert len(r["scores"]) == 2 * len(CANDIDATES)
