@@ -156,6 +156,9 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
     if args.n_ica > args.n_sfa:
         parser.error(f"argument --n-ica: {args.n_ica} exceeds --n-sfa {args.n_sfa} "
                      "(ICA rotates the SFA outputs)")
+    if args.select and max(args.select_units) > args.neurons + 8:
+        parser.error(f"argument --select-units: {max(args.select_units)} exceeds the "
+                     f"{args.neurons + 8} inputs of SFA (--neurons + 8 sensors)")
     if args.n_sfa > args.neurons + 8:
         parser.error(f"argument --n-sfa: {args.n_sfa} exceeds the {args.neurons + 8} inputs of "
                      "SFA (--neurons + 8 sensors)")

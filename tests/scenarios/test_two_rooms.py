@@ -174,6 +174,14 @@ def test_two_rooms_select_rejects_unknown_criterion():
         run_scenario("two-rooms", ["--quick", "--select", "--select-criterion", "labels"])
 
 
+@pytest.mark.parametrize("units", ["0", "2,2", "x", "2,300"])
+def test_two_rooms_select_units_are_checked_before_any_work(units, capsys):
+    with pytest.raises(SystemExit):
+        run_scenario("two-rooms", ["--quick", "--select", "--neurons", "100",
+                                   "--select-units", units])
+    assert "--select-units" in capsys.readouterr().err
+
+
 def test_two_rooms_slow_pool(tmp_path):
     """--slow-pool: the models read the state and its running mean; a bad value, or with
     --faults / --leak-sweep (not wired), is refused before any work."""
