@@ -21,7 +21,7 @@ import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
-from typing import NoReturn
+from typing import Any, NoReturn
 
 #: exit status of a usage error (a bad argument) and of a failure while running
 USAGE_ERROR, FAILURE = 2, 1
@@ -128,18 +128,8 @@ def numbers(count: int | tuple[int, int] | None = None, lo: float | None = None,
     allowed = (f"{how_many} comma-separated numbers "
                f"{_bounds(lo, hi, lo_open=lo_open)}" + (f" ({unit})" if unit else ""))
 
-    def parse(text: str) -> list[float]:
-        parts = [p for p in text.split(",") if p.strip()]
-        try:
-            values = [one(p) for p in parts]
-        except argparse.ArgumentTypeError:
-            raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}") from None
-        if len(values) < lo_n or (hi_n is not None and len(values) > hi_n):
-            raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}")
-        return values
-
-    parse.__name__ = "numbers"
-    return parse
+    return _comma_list(one, allowed, "numbers",
+                       lambda v: lo_n <= len(v) and (hi_n is None or len(v) <= hi_n))
 
 
 def distinct_integers(lo: int | None = None, hi: int | None = None
@@ -148,17 +138,24 @@ def distinct_integers(lo: int | None = None, hi: int | None = None
     one = integer(lo, hi)
     allowed = f"distinct comma-separated integers {_bounds(lo, hi)}"
 
-    def parse(text: str) -> list[int]:
-        parts = [p for p in text.split(",") if p.strip()]
+    return _comma_list(one, allowed, "integers", lambda v: 0 < len(v) == len(set(v)))
+
+
+def _comma_list(one: Callable[[str], Any], allowed: str, name: str,
+                ok: Callable[[list[Any]], bool]) -> Callable[[str], list[Any]]:
+    """A parser of comma-separated values, each read by ``one``, the list accepted by ``ok``;
+    any error says what is ``allowed``."""
+
+    def parse(text: str) -> list[Any]:
         try:
-            values = [one(p) for p in parts]
+            values = [one(p) for p in text.split(",") if p.strip()]
         except argparse.ArgumentTypeError:
             raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}") from None
-        if not values or len(set(values)) != len(values):
+        if not ok(values):
             raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}")
         return values
 
-    parse.__name__ = "integers"
+    parse.__name__ = name
     return parse
 
 
