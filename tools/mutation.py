@@ -52,6 +52,7 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/perception/sfa_moments.py": ["tests/perception/test_sfa.py"],
     "hippo/perception/ica.py": ["tests/perception/test_ica.py", PART_FILES],
     "hippo/perception/ica_scores.py": ["tests/perception/test_ica.py"],
+    "hippo/perception/selection.py": ["tests/perception/test_selection.py"],
     "hippo/perception/reservoir.py": ["tests/perception/test_reservoir.py",
                                       "tests/perception/test_torch_backend.py", PART_FILES],
     "hippo/perception/backends.py": ["tests/perception/test_reservoir.py",

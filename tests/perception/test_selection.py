@@ -131,10 +131,25 @@ def test_separability_known_answers():
     assert separability(ramp) < separability(np.round(ramp)) - 0.03
     Y = np.column_stack([two, rng.normal(size=two.size)])
     assert bimodality(Y) == pytest.approx(1 - (1 + separability(Y[:, 1])) / 2)
+    # the smallest signals: two values are two levels
+    assert separability(np.array([0.0, 1.0])) == pytest.approx(1.0)
+    assert bimodality(np.array([[0.0, 3.0], [1.0, -3.0]])) == pytest.approx(0.0)
     with pytest.raises(ValueError):
         separability(np.array([1.0]))
     with pytest.raises(ValueError):
         bimodality(np.ones(5))
+
+
+def test_bimodality_scores_are_the_held_out_separability_of_the_fitted_units():
+    """``"bimodality"``: 1 - mean separability of the ICA units of the model fitted on the
+    first 80 %, on the last 20 % (the models are returned, so the score can be recomputed)."""
+    U, _ = _slow_source(2000)
+    sel = select_leak(U, [0.05, 0.5], criterion="bimodality", n_reservoir=30, n_sfa=2,
+                      n_ica=2, ica_restarts=1)
+    n_fit = round(2000 * 0.8)
+    for b, m in enumerate(sel.models):
+        Xv = sel.features.X[b][n_fit:]
+        assert sel.scores[b] == pytest.approx(bimodality(m.readout(Xv)))
 
 
 def test_unit_counts_are_candidates_like_leaks():
