@@ -118,7 +118,7 @@ class BrainParams:
         wait stopped for the next checkpoint by its run-up 60 cm short of it, and every
         run-up after counted from there (tuning seed 13: 4 of 17 passes; seed 2, 18 h: 53
         failures). Chosen on tuning seeds 0-39 (patrol-course, learned cells, lesson held
-        at the checkpoints) and 18-h deployments on seeds 0-3: see the README.
+        at the checkpoints) and 18-h deployments on seeds 0-3: see docs/results.md.
     due_first: a place win that would start an approach to a taught stop is not taken when
         the run-ups say that stop is clearly not due (``RunupRules._not_due``) and another
         wanted drive's stop is due at most ``runup_window`` cm ahead: the win is taken for an
@@ -130,7 +130,7 @@ class BrainParams:
         missed stop or a turn back, the run says too little (tuning seed 5, 18 h). **Off by
         default**: built on seed 101 (looked at), it did not hold on fresh held-out seeds
         (18 h, 105-109: 0, 6, 0, 0, 20 failures with it, 7 of them stuck; 0, 6, 0, 0, 1
-        without). See the README.
+        without). See docs/results.md.
     stop_timeout: a stop whose stillness the robot has not perceived ``stop_timeout`` s after
         the proprioceptive debounce (:attr:`hippo.decision.Decider.still_grace`) is given up,
         serving no drive, and the robot explores: a robot that stands in another stop's

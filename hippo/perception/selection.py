@@ -26,7 +26,7 @@ whose features are stable instantaneous functions of the sensors; the product as
 
 Status of ``"bimodal-stable"`` (chosen 2026-11-26 on TUNING data only, with
 ``benchmarks/selection_criteria.py``: two-rooms seeds 0-9 with 2 and with 4 units, generated
-3-room flats 0-9 with 6 units and the 50-tick slow pool; held-out figures: README). Picked
+3-room flats 0-9 with 6 units and the 50-tick slow pool; held-out figures: docs/results.md). Picked
 minus the fixed leak 0.05/0.15 (two rooms: minus SMC09's 4 units at 0.05/0.15, the pick
 choosing 2 or 4 units): two rooms +0.047 mean, worst seed -0.006, 2 units on 10 of 10
 seeds; flats +0.031, worst flat -0.028. Bimodality alone: +0.043 / -0.011 and +0.026 /

@@ -6,8 +6,8 @@ room cell's default model is **2 SFA / 2 ICA units with leaks 0.08/0.15**: FastI
 the two slowest SFA outputs, so a sparse unit cannot pull the slow room signal into a mixture
 (SMC09's 4/4 units with 0.05/0.15 do on some runs: ``--n-sfa 4 --n-ica 4 --leak 0.05,0.15``
 gives the paper's setting). Chosen on the tuning seeds 0-9 (room cell 0.970 vs 0.914, recovery
-12.8 vs 15.9 ticks; README). Which unit is the room cell (and its threshold) is chosen on the
-training part only (``room_cell_is_slowest`` reports whether it is the slowest unit, a choice
+12.8 vs 15.9 ticks; docs/results.md). Which unit is the room cell (and its threshold) is chosen
+on the training part only (``room_cell_is_slowest`` reports whether it is the slowest unit, a choice
 that needs no labels), then scored on the test part by balanced accuracy (room A vs room B,
 corridor ticks left out). The test part is then replayed with the robot kidnapped to the other
 room at test ticks 150 and 640 and put back at 400 and 980 (SMC09 Fig. 7); we count the ticks

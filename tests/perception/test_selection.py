@@ -56,7 +56,7 @@ def test_stability_picks_the_setting_that_carries_the_source(leaks):
     input products recovers it at once: 0.996 vs 0.81). Stability of the slow features across
     the two halves picks the better one both times; held-out slowness picks the slower
     reservoir both times, which is why it was not chosen (it also ranked the two-rooms leak
-    pairs against the labels, see the README row)."""
+    pairs against the labels, see docs/results.md)."""
     U, s = _slow_source()
     kw = dict(n_reservoir=80, n_sfa=2, n_ica=2, ica_restarts=1, seed=0, input_weight=1.0,
               input_prob=0.3)
