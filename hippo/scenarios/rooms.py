@@ -176,9 +176,13 @@ def _room_cells_mean(Y: np.ndarray, lab: np.ndarray, n_train: int, n: int) -> fl
     accuracy (unit, threshold and sign chosen on the training part; corridors left out)."""
     tr, te = slice(0, n_train), slice(n_train, len(Y))
     m = lab[te] >= 0
-    return float(np.nanmean([M.balanced_accuracy(
+    seen = lab[tr][lab[tr] >= 0]
+    # a room the training part never entered (or entered alone) has no cell, as in the flat's
+    # own scoring; a room the test part never entered scores NaN
+    acc = [M.balanced_accuracy(
         M.fit_binary_cell(Y[tr], lab[tr] == r, lab[tr] >= 0).predict(Y[te])[m],
-        (lab[te] == r)[m]) for r in range(n)]))
+        (lab[te] == r)[m]) for r in range(n) if (seen == r).any() and (seen != r).any()]
+    return float(np.nanmean(acc)) if np.isfinite(acc).any() else float("nan")
 
 
 def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any]:

@@ -77,3 +77,18 @@ def test_rooms_slow_pool_off(tmp_path):
     for bad in ("0.5", "-1", "x"):
         with pytest.raises(SystemExit):
             run_scenario("rooms", ["--quick", "--slow-pool", bad])
+
+
+def test_select_scoring_skips_a_room_the_training_part_never_entered():
+    """--select's labelled analysis in a flat whose training part left a room out (5-room
+    flats do): that room has no cell, the others are scored (was: a crash); a flat with no
+    room scorable gives NaN."""
+    from hippo.scenarios.rooms import _room_cells_mean
+
+    rng = np.random.default_rng(0)
+    # training part (600 ticks): rooms 0, 1 and 3; test part: all four
+    lab = np.repeat([0, 1, 3, 0, 1, 3, 2], [200, 200, 200, 50, 50, 50, 100])
+    Y = np.column_stack([lab == r for r in range(4)]).astype(float)
+    Y += 0.01 * rng.normal(size=Y.shape)
+    assert _room_cells_mean(Y, lab, 600, 4) == pytest.approx(1.0)
+    assert np.isnan(_room_cells_mean(Y, np.where(lab == 0, 0, -1), 600, 4))
