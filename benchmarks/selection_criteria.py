@@ -40,10 +40,12 @@ from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
 from hippo.perception.leak_sweep import sweep_features
 from hippo.perception.selection import (
+    bimodality,
     instability,
     normalised_slowness,
     prediction_error,
     rank_correlation,
+    separability,
 )
 from hippo.scenarios._common import cached_recording, parse_seeds
 from hippo.sim import arenas
@@ -54,18 +56,6 @@ FAST = (0.14, 0.15, 0.2, 0.3)
 LEAKS = [(a, b) for a in SLOW for b in FAST]
 CRITERIA = ("slow_sfa", "slow_ica", "pred1", "pred10", "instab_ica", "instab_sfa", "kurt_ica",
             "slow_stable", "bimodal_sfa", "bimodal_ica", "bimodal_slowest")
-
-
-def _otsu(y: np.ndarray) -> float:
-    """Otsu's separability of a 1-D signal: the largest between-class share of its variance
-    over all two-class splits at a threshold (1 for a two-level signal)."""
-    y = np.sort(np.asarray(y, float))
-    n = len(y)
-    c = np.cumsum(y)[:-1]
-    k = np.arange(1, n)
-    m0, m1 = c / k, (y.sum() - c) / (n - k)
-    between = (k / n) * (1 - k / n) * (m0 - m1) ** 2
-    return float(between.max() / max(y.var(), 1e-300))
 
 
 def _world(world: str, seed: int, cache: str | None, ticks: int | None):
@@ -134,9 +124,9 @@ def one_seed(world: str, seed: int, cache: str | None, ticks: int | None, neuron
         row["instab_ica"] = instability(Ia, Ib)
         row["instab_sfa"] = instability(Sa, Sb)
         row["slow_stable"] = row["slow_sfa"] * row["instab_sfa"]
-        row["bimodal_sfa"] = 1 - float(np.mean([_otsu(y) for y in Ysfa[val].T]))
-        row["bimodal_ica"] = 1 - float(np.mean([_otsu(y) for y in Yica[val].T]))
-        row["bimodal_slowest"] = 1 - _otsu(Ysfa[val, 0])
+        row["bimodal_sfa"] = bimodality(Ysfa[val])
+        row["bimodal_ica"] = bimodality(Yica[val])
+        row["bimodal_slowest"] = 1 - separability(Ysfa[val, 0])
         rows.append(row)
     acc = [r["acc"] for r in rows]
     rho = {c: rank_correlation([r[c] for r in rows], acc) for c in CRITERIA}

@@ -26,12 +26,14 @@ whose features are stable instantaneous functions of the sensors; the product as
 
 Status of ``"bimodal-stable"`` (chosen 2026-11-26 on TUNING data only, with
 ``benchmarks/selection_criteria.py``: two-rooms seeds 0-9 with 2 and with 4 units, generated
-3-room flats 0-9 with 6 units and the 50-tick slow pool; held-out figures: docs/results.md). Picked
-minus the fixed leak 0.05/0.15 (two rooms: minus SMC09's 4 units at 0.05/0.15, the pick
-choosing 2 or 4 units): two rooms +0.047 mean, worst seed -0.006, 2 units on 10 of 10
-seeds; flats +0.031, worst flat -0.028. Bimodality alone: +0.043 / -0.011 and +0.026 /
--0.023; the criteria below: two rooms slow-stable +0.026 / -0.057, next-input prediction
-+0.021 / -0.035 (it always picks the fastest pair, 0.11/0.3), ICA kurtosis -0.001 / -0.063.
+3-room flats 0-9 with 3 and with 6 units and the 50-tick slow pool; held-out figures:
+docs/results.md). Picked minus the fixed leak 0.05/0.15 (two rooms: minus SMC09's 4 units at
+0.05/0.15, the pick choosing 2 or 4 units; flats: minus 6 units, the pick choosing 3 or 6):
+two rooms +0.047 mean, worst seed -0.006, 2 units on 10 of 10 seeds; flats +0.060, worst flat
+-0.042, decoder -0.003 (with 6 units only: +0.031, worst -0.028). Bimodality alone: +0.043 /
+-0.011 and +0.060 / -0.087; the criteria below, two rooms: slow-stable +0.026 / -0.057,
+next-input prediction +0.021 / -0.035 (it always picks the fastest pair, 0.11/0.3), ICA
+kurtosis -0.001 / -0.063.
 
 Status of the earlier default ``"slow-stable"`` (SMC09's 4 units; 16 leak pairs 0.03-0.11 x
 0.14-0.3; labelled accuracy: the room cell's test balanced accuracy, in flats the mean over
