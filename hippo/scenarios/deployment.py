@@ -199,7 +199,7 @@ def _metrics(meta: dict, state: dict, s: Session, wall: float) -> dict:
             "success_rate": 1.0 - total / tasks if tasks else None,
             "extra_stops": int(sum(g["extra_stops"] for g in segs)),
             "laps": float(sum(g["laps"] for g in segs)),
-            "reproduced_loop_fraction": float(state["reproduced"]),
+            "reproduced_loop_fraction": round(float(state["reproduced"]), 9),
             "learned_waits_s": state["learned"],
             "waits_s": [{"mean": float(np.mean(w)) if w else None,
                          "sd": float(np.std(w)) if w else None, "n": len(w)} for w in waits],

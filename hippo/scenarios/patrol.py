@@ -41,7 +41,10 @@ route within 30 cm of the checkpoint's, once per lap) is a chance to stop there:
 stop the robot chose for that checkpoint's drive (its first one; ``extra_stops`` counts further
 stops in the same pass, ``misplaced_stops`` stops made there for another checkpoint's drive).
 ``reproduced_waits_s`` are the durations of the counted stops, ``max_rel_error`` their
-worst relative difference from the learned wait.
+worst relative difference from the learned wait. ``reproduced_loop_fraction`` (the loop
+reproduced alone after the leash) and ``loops_completed`` (the patrol's) are signed laps along
+the route: negative when the robot went round it backwards; ``loop_completion`` is
+``loops_completed / --loops`` clipped to [0, 1].
 
 ``run.npz`` holds per-tick ``t, x, y, heading, speed, zone, sound, winner, drives, wait_drive,
 mode, prediction, non_occurrence, phase, trial``, the names of the phases and modes
@@ -139,9 +142,10 @@ def run(args: argparse.Namespace) -> dict:
         "quick": quick, "place_units": places.n_units,
         "reanchor": getattr(places, "relocaliser", None) is not None,
         "loaded_from": str(args.load) if getattr(args, "load", None) is not None else None,
-        "reproduced_loop_fraction": float(reproduced),
-        "loops_completed": float(completed),
-        "loop_completion": float(min(completed / loops, 1.0)),
+        # signed laps along the route (negative: run backwards), rounded off at 1e-9
+        "reproduced_loop_fraction": round(float(reproduced), 9),
+        "loops_completed": round(float(completed), 9),
+        "loop_completion": float(np.clip(completed / loops, 0.0, 1.0)),
         "checkpoints": rows,
         "adaptation": adapt,
         "checkpoint_stops_made": int(sum(r["stops_made"] for r in rows)),
