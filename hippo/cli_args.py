@@ -141,6 +141,36 @@ def distinct_integers(lo: int | None = None, hi: int | None = None
     return _comma_list(one, allowed, "integers", lambda v: 0 < len(v) == len(set(v)))
 
 
+#: the most runs one ``--seeds`` may ask for (a typo such as ``--seeds 987654`` would
+#: otherwise start a run that never ends, or exhaust memory listing the seeds)
+MAX_SEEDS = 1000
+
+
+def seed_ranges(text: str) -> list[int]:
+    """Explicit seeds as ranges and lists, ``100-119`` or ``0-9,15``: distinct, non-negative,
+    at most :data:`MAX_SEEDS` of them (counted before any list is built)."""
+    seeds: list[int] = []
+    try:
+        for part in str(text).split(","):
+            a, sep, b = part.strip().partition("-")
+            lo = int(a)
+            hi = int(b) if sep else lo
+            if lo < 0 or hi < lo:
+                raise ValueError
+            if len(seeds) + hi - lo + 1 > MAX_SEEDS:
+                raise argparse.ArgumentTypeError(
+                    f"{text!r} asks for more than {MAX_SEEDS} seeds; run such a grid in "
+                    "parts (hippo sweep skips the cells already done)")
+            seeds.extend(range(lo, hi + 1))
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"seeds are non-negative integers as ranges and lists (100-119, 0-9,15), got "
+            f"{text!r}") from None
+    if len(set(seeds)) != len(seeds):
+        raise argparse.ArgumentTypeError(f"{text!r} repeats a seed")
+    return seeds
+
+
 def _comma_list(one: Callable[[str], Any], allowed: str, name: str,
                 ok: Callable[[list[Any]], bool]) -> Callable[[str], list[Any]]:
     """A parser of comma-separated values, each read by ``one``, the list accepted by ``ok``;

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import io
 import json
+import math
 import os
 import tempfile
 import time
@@ -131,9 +132,25 @@ def _json_default(obj: Any) -> Any:
     raise TypeError(f"cannot write {type(obj).__name__} to JSON")
 
 
+def _strict(obj: Any) -> Any:
+    """``obj`` with every NaN or infinite number as ``None`` (JSON's null): strict JSON has no
+    NaN, and other readers (``jq``, JavaScript's ``JSON.parse``) refuse the bare token."""
+    if isinstance(obj, float | np.floating):
+        return float(obj) if math.isfinite(obj) else None
+    if isinstance(obj, np.ndarray):
+        return _strict(obj.tolist()) if obj.dtype.kind in "fc" or obj.dtype == object \
+            else obj.tolist()
+    if isinstance(obj, dict):
+        return {k: _strict(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_strict(v) for v in obj]
+    return obj
+
+
 def save_json(path: str | os.PathLike, obj: Any) -> Path:
-    """Write ``obj`` as indented JSON, atomically; numpy scalars and arrays are converted."""
-    text = json.dumps(obj, indent=2, default=_json_default, allow_nan=True)
+    """Write ``obj`` as indented, strict JSON, atomically; numpy scalars and arrays are
+    converted, and a NaN or infinite number is written as ``null`` (not measured)."""
+    text = json.dumps(_strict(obj), indent=2, default=_json_default, allow_nan=False)
     return _atomic_write(Path(path), lambda fh: fh.write(text.encode()))
 
 

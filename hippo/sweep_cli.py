@@ -3,36 +3,14 @@ Dask distributed)."""
 
 from __future__ import annotations
 
-import argparse
 from collections.abc import Sequence
 from pathlib import Path
 
-from hippo.cli_args import Parser, integer, out_dir
+from hippo.cli_args import Parser, integer, out_dir, seed_ranges
 from hippo.io import load_json
 from hippo.sweep import grid, run_sweep
 
 __all__ = ["sweep_main"]
-
-
-def _seeds(text: str) -> list[int]:
-    """``0-3`` or ``0,2,5`` (or both: ``0-3,10``)."""
-    seeds: list[int] = []
-    for part in text.split(","):
-        part = part.strip()
-        if not part:
-            continue
-        try:
-            if "-" in part[1:]:
-                a, b = part.split("-", 1) if not part.startswith("-") else (part, part)
-                seeds += range(int(a), int(b) + 1)
-            else:
-                seeds.append(int(part))
-        except ValueError:
-            raise argparse.ArgumentTypeError(
-                f"seeds must look like 0-3 or 0,2,5, got {text!r}") from None
-    if not seeds:
-        raise argparse.ArgumentTypeError(f"no seeds in {text!r}")
-    return seeds
 
 
 def sweep_main(argv: Sequence[str]) -> int:
@@ -49,7 +27,7 @@ def sweep_main(argv: Sequence[str]) -> int:
         "distributed (a LocalCluster unless --scheduler is given); resumable.",
         epilog="Options after -- go to every cell's scenario (e.g. -- --quick).")
     ap.add_argument("scenario", choices=sorted(SCENARIOS))
-    ap.add_argument("--seeds", type=_seeds, default=[0], help="e.g. 0-3 or 0,2,5 (default 0)")
+    ap.add_argument("--seeds", type=seed_ranges, default=[0], help="e.g. 0-3 or 0,2,5 (default 0)")
     ap.add_argument("--param", nargs="+", action="append", default=[], metavar=("NAME", "VALUE"),
                     help="a scenario option and its values, e.g. --param leak 0.05,0.15 "
                     "0.11,0.14 (repeat for more; the grid is every combination)")

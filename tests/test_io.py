@@ -99,3 +99,19 @@ def test_npz_refuses_objects_and_loads_without_pickle(tmp_path):
     (tmp_path / "bad.npz").write_bytes(b"PK\x03\x04garbage")
     with pytest.raises(io.CorruptFileError):
         io.load_npz(tmp_path / "bad.npz")
+
+
+def test_json_is_strict_a_nan_or_infinity_is_written_as_null(tmp_path):
+    import json
+
+    def refuse(token):
+        raise ValueError(f"non-standard JSON token {token}")
+
+    obj = {"nan": float("nan"), "list": [1.5, np.float32(np.inf), -np.inf],
+           "array": np.array([[0.25, np.nan]]), "ints": np.arange(2), "n": np.int64(7),
+           "nested": ({"x": np.float64("nan")}, "text")}
+    path = io.save_json(tmp_path / "m.json", obj)
+    back = json.loads(path.read_text(), parse_constant=refuse)   # strict: no NaN token
+    assert back == {"nan": None, "list": [1.5, None, None], "array": [[0.25, None]],
+                    "ints": [0, 1], "n": 7, "nested": [{"x": None}, "text"]}
+    assert io.load_json(path) == back

@@ -15,9 +15,10 @@ import pytest
 distributed = pytest.importorskip("distributed")
 
 from hippo._threads import blas_budget  # noqa: E402
+from hippo.cli_args import MAX_SEEDS, seed_ranges  # noqa: E402
 from hippo.io import load_json  # noqa: E402
 from hippo.sweep import Cell, grid, run_sweep  # noqa: E402
-from hippo.sweep_cli import _seeds, sweep_main  # noqa: E402
+from hippo.sweep_cli import sweep_main  # noqa: E402
 
 
 def square_task(cell: Cell, out: str) -> dict:
@@ -60,7 +61,16 @@ def test_grid_is_every_combination_for_every_seed():
                         ["--quick"])[0].id  # stable across runs: resumable
     with pytest.raises(ValueError, match="leak"):
         grid("two-rooms", [0], {"leak": []})
-    assert _seeds("0-3,7") == [0, 1, 2, 3, 7]
+    assert seed_ranges("0-3,7") == [0, 1, 2, 3, 7]
+
+
+def test_sweep_seeds_are_checked_like_a_scenarios():
+    import argparse
+
+    for bad in ("-2", "3-1", "1,1", "a", "", f"0-{MAX_SEEDS}", "0-10000000000000"):
+        with pytest.raises(argparse.ArgumentTypeError):
+            seed_ranges(bad)
+    assert len(seed_ranges(f"1-{MAX_SEEDS}")) == MAX_SEEDS
 
 
 def test_blas_budget_never_oversubscribes():

@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo.cli_args import out_dir
+from hippo.cli_args import MAX_SEEDS, out_dir, seed_ranges
 from hippo.io import clean_stale_temps, save_json
 from hippo.sim.record import Recording
 
@@ -63,29 +63,22 @@ HELD_OUT_SEEDS = tuple(range(100, 120))
 
 def parse_seeds(text: str) -> list[int] | int:
     """Parse ``--seeds``: a count ``N`` (the seeds ``--seed`` … ``--seed + N - 1``, returned as
-    an int) or explicit seeds as ranges and lists, ``100-119`` or ``0-9,15`` (a list)."""
+    an int) or explicit seeds as ranges and lists, ``100-119`` or ``0-9,15`` (a list); at most
+    :data:`~hippo.cli_args.MAX_SEEDS` runs either way."""
     s = str(text).strip()
     if s.isdigit():
         n = int(s)
         if n < 1:
             raise argparse.ArgumentTypeError(f"--seeds must be >= 1 or a list, got {text!r}")
+        if n > MAX_SEEDS:
+            raise argparse.ArgumentTypeError(
+                f"--seeds {s} is a count of runs (at most {MAX_SEEDS}); for the one seed {s} "
+                f"give --seed {s}, or --seeds {s}-{s}")
         return n
-    seeds: list[int] = []
     try:
-        for part in s.split(","):
-            a, sep, b = part.strip().partition("-")
-            lo = int(a)
-            hi = int(b) if sep else lo
-            if lo < 0 or hi < lo:
-                raise ValueError
-            seeds.extend(range(lo, hi + 1))
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"--seeds takes a count (5) or non-negative seeds as ranges and lists "
-            f"(100-119, 0-9,15), got {text!r}") from None
-    if len(set(seeds)) != len(seeds):
-        raise argparse.ArgumentTypeError(f"--seeds repeats a seed: {text!r}")
-    return seeds
+        return seed_ranges(s)
+    except argparse.ArgumentTypeError as e:
+        raise argparse.ArgumentTypeError(f"--seeds takes a count (5) or {e}") from None
 
 
 def seed_list(args: argparse.Namespace) -> list[int]:

@@ -97,9 +97,14 @@ def test_seeds_parser():
     assert parse_seeds("0-2,15") == [0, 1, 2, 15]
     assert seed_list(argparse.Namespace(seed=5, seeds=2)) == [5, 6]
     assert seed_list(argparse.Namespace(seed=5, seeds=[9, 1])) == [9, 1]
-    for bad in ("0", "3-1", "a", "1,1", "-2"):
+    for bad in ("0", "3-1", "a", "1,1", "-2", "1001", "4294967296", "0-100000000000",
+                "5,0-999"):
         with pytest.raises(argparse.ArgumentTypeError):
             parse_seeds(bad)
+    # a bare number is a count: a large one is refused with the way to ask for one seed
+    with pytest.raises(argparse.ArgumentTypeError, match="--seed 987654"):
+        parse_seeds("987654")
+    assert parse_seeds("1000") == 1000 and len(parse_seeds("0-999")) == 1000
 
 
 def test_kidnapped_run_replays_the_clean_run_until_the_first_kidnap():
