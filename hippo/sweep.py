@@ -48,7 +48,9 @@ import json
 import math
 import os
 import socket
+import tempfile
 import time
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -60,10 +62,11 @@ try:  # the optional extra hippo[sweep]
     from distributed.diagnostics.plugin import SchedulerPlugin
 except ImportError:  # pragma: no cover - checked by run_sweep with a clear message
     SchedulerPlugin = object  # type: ignore[assignment,misc]
-from hippo.io import atomic_write_text, load_json, save_json
+from hippo.io import atomic_write_text, load_json, save_figure, save_json
 from hippo.progress import Progress
 
-__all__ = ["Cell", "SweepResult", "grid", "run_sweep", "scenario_task"]
+__all__ = ["Cell", "CellArgumentError", "SweepResult", "check_cells", "grid", "run_sweep",
+           "scenario_task"]
 
 #: name of the scheduler plugin that counts the starts of every cell
 PLUGIN_NAME = "hippo-sweep-starts"
@@ -108,15 +111,57 @@ def grid(scenario: str, seeds: Sequence[int], params: Mapping[str, Sequence[str]
             for combo in combos for s in seeds]
 
 
+class CellArgumentError(ValueError):
+    """A cell's scenario refused its command line (the message is the scenario's own)."""
+
+
+def _parse_cell(cell: Cell, out: Path) -> tuple[Any, Any]:
+    """Parse ``cell``'s command line as its scenario would; a refusal (argparse's
+    ``SystemExit``) becomes :class:`CellArgumentError` with the scenario's one-line message."""
+    from hippo.runner import parse_scenario_args
+
+    err = io.StringIO()
+    try:
+        with contextlib.redirect_stderr(err):
+            return parse_scenario_args(cell.scenario, cell.argv(out))
+    except SystemExit as exc:
+        lines = [ln for ln in err.getvalue().splitlines() if ln.strip()]
+        # "hippo run X: error: what (see hippo run X --help)": keep what, and where to look
+        why = lines[-1].split(": error: ", 1)[-1] if lines else f"exit status {exc.code}"
+        raise CellArgumentError(why) from None
+
+
+def check_cells(cells: Sequence[Cell]) -> None:
+    """Raise :class:`CellArgumentError` naming the first cell whose options its scenario
+    refuses, before anything runs (each distinct set of options is parsed once, with a
+    placeholder output folder that is never created)."""
+    seen: set[tuple] = set()
+    for c in cells:
+        key = (c.scenario, c.params, c.extra)
+        if key in seen:
+            continue
+        seen.add(key)
+        try:
+            _parse_cell(c, Path(tempfile.gettempdir()) / "hippo-sweep-check" / c.id)
+        except CellArgumentError as exc:
+            given = " ".join(f"--{n} {v}" for n, v in c.params)
+            raise CellArgumentError(f"the cell {given} {' '.join(c.extra)}".rstrip()
+                                    + f": {exc}") from None
+
+
 def scenario_task(cell: Cell, out: str) -> dict[str, Any]:
     """Run ``cell``'s scenario with its output in ``out``; returns the scenario's metrics (what
-    it prints goes to ``out/log.txt``, not to the sweep's terminal)."""
-    from hippo.runner import run_scenario
-
+    it prints goes to ``out/log.txt``, not to the sweep's terminal). A command line the
+    scenario refuses raises :class:`CellArgumentError` (never ``SystemExit``, which would take
+    the worker process down with it)."""
     os.environ.setdefault("HIPPO_QUIET", "1")
+    args, module = _parse_cell(cell, Path(out))
     Path(out).mkdir(parents=True, exist_ok=True)
     with open(Path(out) / "log.txt", "w") as log, contextlib.redirect_stdout(log):
-        return run_scenario(cell.scenario, cell.argv(Path(out)))
+        try:
+            return module.run(args)
+        except SystemExit as exc:  # a scenario that exits (e.g. --resume refused)
+            raise RuntimeError(f"the scenario exited ({exc.code})") from None
 
 
 def _run_cell(task: Callable[[Cell, str], Mapping[str, Any]], cell: Cell, out: str,
@@ -208,8 +253,12 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
     attempts for a cell that raises. ``task(cell, out_dir)`` runs one cell and returns its
     metrics (default: the scenario, :func:`scenario_task`). Cells already finished under
     ``out`` are skipped. Returns a :class:`SweepResult`; its ``failed`` lists the cells that
-    failed every attempt (also in the table).
+    failed every attempt (also in the table). With the default task every cell's options are
+    first parsed as its scenario would (:func:`check_cells`): a refused one raises
+    :class:`CellArgumentError` before anything runs.
     """
+    if task is scenario_task:
+        check_cells(cells)
     try:
         from distributed import as_completed
     except ImportError:  # pragma: no cover - the core install
@@ -256,11 +305,15 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
     if figure and result.rows:
         from hippo.plots.sweep import plot_sweep_summary
 
-        fig, _ = plot_sweep_summary(result.rows, names, metric=metric)
-        fig.savefig(out / "summary.png", dpi=120)
-        import matplotlib.pyplot as plt
+        try:
+            fig, _ = plot_sweep_summary(result.rows, names, metric=metric)
+        except ValueError as exc:  # a metric no cell has: the results stand, no figure
+            warnings.warn(f"no summary figure: {exc}", stacklevel=2)
+        else:
+            save_figure(fig, out / "summary.png", dpi=120)
+            import matplotlib.pyplot as plt
 
-        plt.close(fig)
+            plt.close(fig)
     return result
 
 

@@ -17,7 +17,14 @@ distributed = pytest.importorskip("distributed")
 from hippo._threads import blas_budget  # noqa: E402
 from hippo.cli_args import MAX_SEEDS, seed_ranges  # noqa: E402
 from hippo.io import load_json  # noqa: E402
-from hippo.sweep import Cell, grid, run_sweep  # noqa: E402
+from hippo.sweep import (  # noqa: E402
+    Cell,
+    CellArgumentError,
+    check_cells,
+    grid,
+    run_sweep,
+    scenario_task,
+)
 from hippo.sweep_cli import sweep_main  # noqa: E402
 
 
@@ -157,6 +164,34 @@ def test_cli_names_a_bad_parameter(capsys):
         with pytest.raises(SystemExit):
             sweep_main(["timing-demo", *bad])
         assert bad[0] in capsys.readouterr().err
+
+
+def test_a_value_its_scenario_refuses_is_named_before_anything_runs(tmp_path, capsys):
+    # the scenario's own refusal (argparse exits) used to kill the Dask worker that ran the
+    # cell, so that every cell was reported lost (KilledWorker) and --retries was ignored
+    cells = grid("demo", [0, 1], {"rho": ["0.5", "2"]}, ["--quick"])
+    with pytest.raises(CellArgumentError, match=r"--rho 2 --quick: argument --rho"):
+        check_cells(cells)
+    check_cells(cells[:2])   # rho 0.5: fine
+    with pytest.raises(CellArgumentError, match="rho"):
+        run_sweep(cells, tmp_path / "never", task=scenario_task)
+    assert not (tmp_path / "never").exists()   # refused before any folder is made
+    with pytest.raises(CellArgumentError, match="unrecognized arguments: --bogus"):
+        scenario_task(grid("demo", [0], extra=["--bogus"])[0], str(tmp_path / "cell"))
+    assert not (tmp_path / "cell").exists()
+    with pytest.raises(SystemExit) as exc:
+        sweep_main(["demo", "--param", "rho", "0.5", "2", "--out", str(tmp_path / "cli"),
+                    "--", "--quick"])
+    assert exc.value.code == 2
+    assert "--rho 2" in capsys.readouterr().err and not (tmp_path / "cli").exists()
+
+
+def test_a_metric_no_cell_has_leaves_the_results_and_warns(tmp_path, client):
+    cells = grid("demo", [0, 1], {"gain": ["2"]})
+    with pytest.warns(UserWarning, match="no summary figure: metric 'nope'"):
+        res = run_sweep(cells, tmp_path, client=client, task=square_task, metric="nope")
+    assert res.ok and len(res.rows) == 2 and (tmp_path / "results.csv").exists()
+    assert not (tmp_path / "summary.png").exists()
 
 
 @pytest.mark.slow
