@@ -7,7 +7,9 @@ for ``--hours`` simulated hours, every drive kept up. Every pass by a checkpoint
 without its stop (``missed``), a stop it chose in the wrong place or for the wrong checkpoint
 (``misplaced``), a wait more than 5 % off the wait it learned (``wait_off``), or no progress
 along the route for 3 minutes (``stuck``: the operator then puts it back on the route, 20 cm
-ahead). See :mod:`hippo.tasks.deployment`.
+ahead). See :mod:`hippo.tasks.deployment`. ``success_rate`` is the share of passes served (a
+stop whose wait is within 5 %); ``failures_total`` and ``tasks_per_failure`` count every kind.
+``laps`` are signed laps along the route (negative: run backwards).
 
 The run is cut into segments of ``--segment-min`` simulated minutes, each ending at the route's
 quiet point (no stop straddles two). After each segment the failures are tallied, the robot's
@@ -196,7 +198,10 @@ def _metrics(meta: dict, state: dict, s: Session, wall: float) -> dict:
     return {**meta, "hours": hours, "tasks": tasks, "failures": failures,
             "failures_total": total, "failures_per_hour": total / hours if hours else None,
             "tasks_per_failure": tasks / total if total else None,
-            "success_rate": 1.0 - total / tasks if tasks else None,
+            # the passes served (a stop, its wait within tolerance); misplaced stops and
+            # stuck spells happen outside passes and count in failures_total only
+            "success_rate": (1.0 - (failures["missed"] + failures["wait_off"]) / tasks
+                             if tasks else None),
             "extra_stops": int(sum(g["extra_stops"] for g in segs)),
             "laps": float(sum(g["laps"] for g in segs)),
             "reproduced_loop_fraction": round(float(state["reproduced"]), 9),

@@ -80,3 +80,23 @@ def test_resume_with_other_options_is_refused(tmp_path):
     Checkpoints(tmp_path / "resume").save({"meta": {"seed": 9}, "run": {}})
     with pytest.raises(SystemExit, match="other options"):
         run_scenario("deployment", [*ARGS, "--resume", "--out", str(tmp_path)])
+
+
+def test_success_rate_is_the_share_of_passes_served_whatever_else_failed():
+    # a maze run got stuck 57 times in 3 passes: the rate was 1 - 62/3 = -19.7
+    from types import SimpleNamespace
+
+    from hippo.scenarios.deployment import _metrics
+
+    health = {"states": 10, "transitions": 20}
+    seg = {"missed": 1, "misplaced": 4, "wait_off": 0, "stuck": 57, "tasks": 3, "laps": -0.75,
+           "extra_stops": 0, "waits_s": [[5.0], []], "t1_h": 0.37, "health": health}
+    m = _metrics({"waits": [5.0, 8.0]}, {"segments": [seg], "health0": health,
+                                         "reproduced": 1.0, "learned": [5.0, 8.0]},
+                 SimpleNamespace(t=1332.0), 1.0)
+    assert m["success_rate"] == pytest.approx(2 / 3)
+    assert m["failures_total"] == 62 and m["tasks_per_failure"] == pytest.approx(3 / 62)
+    seg.update(missed=3, tasks=3)
+    assert _metrics({"waits": [5.0, 8.0]}, {"segments": [seg], "health0": health,
+                                            "reproduced": 1.0, "learned": [5.0, 8.0]},
+                    SimpleNamespace(t=1332.0), 1.0)["success_rate"] == 0.0
