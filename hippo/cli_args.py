@@ -144,6 +144,8 @@ def distinct_integers(lo: int | None = None, hi: int | None = None
 #: the most runs one ``--seeds`` may ask for (a typo such as ``--seeds 987654`` would
 #: otherwise start a run that never ends, or exhaust memory listing the seeds)
 MAX_SEEDS = 1000
+#: the largest seed (``--seed`` and ``--seeds`` alike)
+MAX_SEED = 2**32 - 1
 
 
 def seed_ranges(text: str) -> list[int]:
@@ -155,7 +157,7 @@ def seed_ranges(text: str) -> list[int]:
             a, sep, b = part.strip().partition("-")
             lo = int(a)
             hi = int(b) if sep else lo
-            if lo < 0 or hi < lo:
+            if lo < 0 or hi < lo or hi > MAX_SEED:
                 raise ValueError
             if len(seeds) + hi - lo + 1 > MAX_SEEDS:
                 raise argparse.ArgumentTypeError(
@@ -164,8 +166,8 @@ def seed_ranges(text: str) -> list[int]:
             seeds.extend(range(lo, hi + 1))
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"seeds are non-negative integers as ranges and lists (100-119, 0-9,15), got "
-            f"{text!r}") from None
+            f"seeds are integers in [0, {MAX_SEED}] as ranges and lists (100-119, 0-9,15), "
+            f"got {text!r}") from None
     if len(set(seeds)) != len(seeds):
         raise argparse.ArgumentTypeError(f"{text!r} repeats a seed")
     return seeds

@@ -16,7 +16,7 @@ from collections.abc import Sequence
 from types import ModuleType
 from typing import Any
 
-from hippo.cli_args import Parser, integer, out_dir
+from hippo.cli_args import MAX_SEED, Parser, integer, out_dir
 
 #: scenario name -> module implementing it
 SCENARIOS: dict[str, str] = {
@@ -70,7 +70,7 @@ def scenario_parser(name: str, prog: str | None = None) -> tuple[argparse.Argume
     parser = Parser(prog=prog or f"hippo run {name}", description=doc)
     parser.add_argument("--out", type=out_dir, default=f"out/{name}",
                         help="output folder (created if needed)")
-    parser.add_argument("--seed", type=integer(0, 2**32 - 1), default=0, help="random seed")
+    parser.add_argument("--seed", type=integer(0, MAX_SEED), default=0, help="random seed")
     parser.add_argument("--quick", action="store_true",
                         help="a short run for tests and first looks: its numbers are a smoke "
                              "test, not results")

@@ -74,7 +74,8 @@ def test_grid_is_every_combination_for_every_seed():
 def test_sweep_seeds_are_checked_like_a_scenarios():
     import argparse
 
-    for bad in ("-2", "3-1", "1,1", "a", "", f"0-{MAX_SEEDS}", "0-10000000000000"):
+    for bad in ("-2", "3-1", "1,1", "a", "", f"0-{MAX_SEEDS}", "0-10000000000000",
+                "18446744073709551616-18446744073709551617", "4294967296"):
         with pytest.raises(argparse.ArgumentTypeError):
             seed_ranges(bad)
     assert len(seed_ranges(f"1-{MAX_SEEDS}")) == MAX_SEEDS

@@ -6,7 +6,6 @@ robot, ``--load DIR`` starts from one instead of teaching it again."""
 from __future__ import annotations
 
 import argparse
-import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -23,6 +22,13 @@ from hippo.cli_args import (
     snapshot_dir,
 )
 from hippo.cognitive_map import DriveParams, LocaliserParams, PlannerParams
+from hippo.scenarios._meta_checks import (
+    bad_field,
+    check_choice,
+    check_number,
+    check_whole,
+    finite,
+)
 from hippo.sim import World, arenas
 from hippo.snapshot import load_snapshot, save_snapshot
 from hippo.tasks import PLACE_STATES, Log, Session, explore, make_places, stops, wall_side
@@ -157,48 +163,32 @@ def _check_meta(meta: dict) -> None:
     """Raise ``ValueError`` naming the field unless a saved lesson's meta is one ``--save``
     could have written: the options within the command line's own bounds, and a course
     :func:`check_patrol` accepts (so a hand-edited snapshot is refused before any work)."""
-    def bad(key: str, want: str) -> ValueError:
-        return ValueError(f"the snapshot's meta {key}={meta[key]!r} is not {want}")
-
-    def whole(key: str, lo: int, hi: int | None = None) -> None:
-        v = meta[key]
-        if isinstance(v, bool) or not isinstance(v, int | float) or v != int(v) \
-                or v < lo or (hi is not None and v > hi):
-            raise bad(key, f"a whole number in [{lo}, {hi if hi is not None else 'inf'}]")
-
     if meta["arena"] not in ARENA_CHECKPOINTS:
         raise ValueError(f"unknown arena {meta['arena']!r} in the snapshot")
-    whole("seed", 0, 2**63 - 1)
-    whole("units", 1, 200)
-    whole("places", 1, 500)
-    ex = meta["explore_min"]
-    if isinstance(ex, bool) or not isinstance(ex, int | float) or not 5.0 <= ex <= 600.0:
-        raise bad("explore_min", "a number of minutes in [5, 600]")
-    if meta["place_cells"] not in PLACE_CELLS:
-        raise bad("place_cells", f"one of {PLACE_CELLS}")
+    check_whole(meta, "seed", 0, 2**32 - 1)
+    check_whole(meta, "units", 1, 200)
+    check_whole(meta, "places", 1, 500)
+    check_number(meta, "explore_min", 5.0, 600.0, "minutes")
+    check_choice(meta, "place_cells", PLACE_CELLS)
     if meta_route(meta) not in ROUTE_KINDS:
-        raise ValueError(f"the snapshot's meta route={meta['route']!r} is not one of "
-                         f"{ROUTE_KINDS}")
+        raise bad_field(meta, "route", f"one of {ROUTE_KINDS}")
     cps, waits = meta["checkpoints"], meta["waits"]
     if not isinstance(cps, list) or not 2 <= len(cps) <= 4 or not all(
-            isinstance(c, list) and len(c) == 2 and all(_finite(v) for v in c) for c in cps):
-        raise bad("checkpoints", "2 to 4 points [x, y] in cm")
-    if not isinstance(waits, list) or not all(_finite(w) and 0.5 <= w <= 120.0 for w in waits):
-        raise bad("waits", "a list of waits in [0.5, 120] s")
+            isinstance(c, list) and len(c) == 2 and all(finite(v) for v in c) for c in cps):
+        raise bad_field(meta, "checkpoints", "2 to 4 points [x, y] in cm")
+    if not isinstance(waits, list) or not all(finite(w) and 0.5 <= w <= 120.0 for w in waits):
+        raise bad_field(meta, "waits", "a list of waits in [0.5, 120] s")
     stops_ = meta["taught_stops"]
     if not isinstance(stops_, list) or len(stops_) != len(cps) or not all(
-            v is None or (_finite(v) and v >= 0) for v in stops_):
-        raise bad("taught_stops", f"one stillness (s, or null) per checkpoint ({len(cps)})")
-    if not _finite(meta["reproduced"]):
-        raise bad("reproduced", "a finite number")
+            v is None or (finite(v) and v >= 0) for v in stops_):
+        raise bad_field(meta, "taught_stops", f"one stillness (s, or null) per checkpoint "
+                                              f"({len(cps)})")
+    if not finite(meta["reproduced"]):
+        raise bad_field(meta, "reproduced", "a finite number")
     try:
         check_patrol(meta["arena"], cps, waits, meta_route(meta))
     except ValueError as e:
         raise ValueError(f"the snapshot's course: {e}") from None
-
-
-def _finite(v: Any) -> bool:
-    return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
 
 
 def save_lesson(folder: str | Path, lesson: Lesson, args: argparse.Namespace) -> None:

@@ -29,11 +29,20 @@ from enum import IntEnum
 import numpy as np
 
 from hippo.agent import Agent, AgentParams
-from hippo.cli_args import add_place_cells, integer, number, out_dir, probability, snapshot_dir
+from hippo.cli_args import (
+    PLACE_CELLS,
+    add_place_cells,
+    integer,
+    number,
+    out_dir,
+    probability,
+    snapshot_dir,
+)
 from hippo.cognitive_map import DriveParams, LocaliserParams, PlannerParams
 from hippo.io import CorruptFileError
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
+from hippo.scenarios._meta_checks import bad_field, check_choice, check_number, check_whole
 from hippo.sim import World, arenas
 from hippo.snapshot import load_snapshot, save_snapshot
 from hippo.tasks import (
@@ -134,7 +143,18 @@ def _load_robot(folder) -> dict:
     meta = state.get("meta")
     if not isinstance(meta, dict) or any(k not in meta for k in _META):
         raise ValueError(f"the snapshot's meta must hold {', '.join(_META)}")
+    _check_meta(meta)
     return state
+
+
+def _check_meta(meta: dict) -> None:
+    """Each field within its option's bounds: a hand-edited snapshot is refused on --load."""
+    check_whole(meta, "seed", 0, 2**32 - 1)
+    check_choice(meta, "place_cells", PLACE_CELLS)
+    check_number(meta, "explore_min", 5.0, 600.0, "minutes")
+    check_number(meta, "explore_rho", 0.0, 1.0)
+    if not isinstance(meta["quick"], bool):
+        raise bad_field(meta, "quick", "true or false")
 
 
 def run(args: argparse.Namespace) -> dict:

@@ -1,5 +1,6 @@
-"""A saved patrol lesson's meta is checked field by field before any work (a hand-edited
-snapshot whose checksums were recomputed is refused with the field named, never half-run)."""
+"""A saved robot's meta (patrol lesson, place-preference robot) is checked field by field
+before any work: a hand-edited snapshot whose checksums were recomputed is refused with the
+field named, never half-run."""
 
 import pytest
 
@@ -48,3 +49,15 @@ def test_a_course_the_arena_cannot_hold_is_refused():
         _check_meta(_meta(arena="maze"))
     with pytest.raises(ValueError, match="unknown arena"):
         _check_meta(_meta(arena="moon"))
+
+
+def test_a_saved_place_preference_robots_meta_is_checked_too():
+    from hippo.scenarios.place_preference import _check_meta as check_pp
+
+    good = {"seed": 4, "place_cells": "learned", "explore_min": 40.0, "explore_rho": 0.0,
+            "quick": False}
+    check_pp(good)
+    for key, value in (("seed", "abc"), ("seed", -1), ("place_cells", "bogus"),
+                       ("explore_min", -3.0), ("explore_rho", 7), ("quick", 1)):
+        with pytest.raises(ValueError, match=key):
+            check_pp({**good, key: value})
