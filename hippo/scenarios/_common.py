@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -12,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from hippo.cli_args import MAX_SEEDS, out_dir, seed_ranges
-from hippo.io import clean_stale_temps, save_json
+from hippo.io import CorruptFileError, clean_stale_temps, save_json
 from hippo.sim.record import Recording
 
 
@@ -103,15 +104,25 @@ def add_cache_argument(parser: argparse.ArgumentParser) -> None:
                              "settings; default: record afresh")
 
 
-def cached_recording(cache: str | Path | None, key: str, build: Callable[[], Recording]
-                     ) -> Recording:
+def cached_recording(cache: str | Path | None, key: str, build: Callable[[], Recording],
+                     ticks: int | None = None) -> Recording:
     """``build()`` once per ``key``: with a ``cache`` folder the recording is kept there as
-    ``key.npz`` (atomic write) and read back on later calls."""
+    ``key.npz`` (atomic write) and read back on later calls. A cached file that is damaged,
+    or not ``ticks`` long, is recorded again (with a warning), never used."""
     if cache is None:
         return build()
     path = Path(cache) / f"{key}.npz"
     if path.exists():
-        return Recording.load(path)
+        try:
+            rec = Recording.load(path)
+        except CorruptFileError as exc:
+            why = str(exc)
+        else:
+            if ticks is None or len(rec) == ticks:
+                return rec
+            why = f"{len(rec)} ticks, not {ticks}"
+        warnings.warn(f"the cached recording {path} is unusable ({why}): recording it again",
+                      stacklevel=2)
     rec = build()
     path.parent.mkdir(parents=True, exist_ok=True)
     rec.save(path)

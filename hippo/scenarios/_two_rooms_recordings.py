@@ -5,11 +5,12 @@ during the test part (moved to the other room at test ticks 150 and 640, put bac
 from __future__ import annotations
 
 import argparse
+import warnings
 from pathlib import Path
 
 import numpy as np
 
-from hippo.io import load_json, save_json
+from hippo.io import CorruptFileError, load_json, save_json
 from hippo.scenarios._common import cached_recording
 from hippo.seeds import Seeds
 from hippo.sim.arena import Arena
@@ -89,16 +90,37 @@ def _recordings(args: argparse.Namespace, arena, ticks: int, n_train: int, seed:
     ``--cache``)."""
     tag = f"two-rooms_t{ticks}_rho{args.rho:g}_s{seed}"
     rec = cached_recording(args.cache, tag, lambda: record(
-        arena, ticks, seed=seed, rho=args.rho, sensors="ir8", desc=f"two-rooms seed {seed}"))
+        arena, ticks, seed=seed, rho=args.rho, sensors="ir8", desc=f"two-rooms seed {seed}"),
+        ticks)
     # "_kid2": kidnaps drawn from the named "kidnaps" stream (before: an unnamed key)
     meta_path = Path(args.cache) / f"{tag}_kid2.json" if args.cache else None
     if meta_path is not None and meta_path.exists():
-        meta = load_json(meta_path)
-        rec_kid = Recording.load(meta_path.with_suffix(".npz"))
-        return rec, rec_kid, meta["events"], meta["kinds"], meta["moved"]
+        try:
+            return (rec, *_cached_kidnaps(meta_path, ticks))
+        except (CorruptFileError, FileNotFoundError) as exc:
+            warnings.warn(f"the cached kidnapped recording {meta_path} is unusable ({exc}): "
+                          "recording it again", stacklevel=2)
     rec_kid, events, kinds, moved = kidnapped_recording(arena, ticks, n_train, seed=seed,
                                                         rho=args.rho)
     if meta_path is not None:
         rec_kid.save(meta_path.with_suffix(".npz"))
         save_json(meta_path, {"events": events, "kinds": kinds, "moved": moved})
     return rec, rec_kid, events, kinds, moved
+
+
+def _cached_kidnaps(meta_path: Path, ticks: int) -> tuple[Recording, list, list, list]:
+    """The kidnapped recording and its events, kinds and moves read back from the cache,
+    checked (``CorruptFileError`` names what is wrong)."""
+    meta = load_json(meta_path)
+    rec_kid = Recording.load(meta_path.with_suffix(".npz"))
+    if not isinstance(meta, dict) or any(not isinstance(meta.get(k), list)
+                                         for k in ("events", "kinds", "moved")):
+        raise CorruptFileError(f"{meta_path} must hold the lists events, kinds and moved")
+    ev, kinds, moved = meta["events"], meta["kinds"], meta["moved"]
+    if not (len(ev) == len(kinds) == len(moved)) or len(rec_kid) != ticks \
+            or not all(isinstance(e, int) and 0 <= e < ticks for e in ev) \
+            or not all(isinstance(k, str) for k in kinds) \
+            or not all(isinstance(m, bool) for m in moved):
+        raise CorruptFileError(f"{meta_path}: events, kinds and moved do not match each other "
+                               f"or a {ticks}-tick recording")
+    return rec_kid, ev, kinds, moved

@@ -242,7 +242,7 @@ def run(args: argparse.Namespace) -> dict:
     t0 = time.perf_counter()
     rec = cached_recording(args.cache, f"maze_t{ticks}_rho{args.rho:g}_s{args.seed}",
                            lambda: record(arena, ticks, seed=args.seed, rho=args.rho,
-                                          sensors="ray17", desc="maze"))
+                                          sensors="ray17", desc="maze"), ticks)
     t_rec = time.perf_counter() - t0
     U = rec.sensors
     n_train = (ticks * 5 // 6) // f * f

@@ -162,7 +162,7 @@ def _kidnapped_run(arena, rec: Recording, n_train: int, test_len: int, seed: int
     tag = f"{arena.name}_kid_t{test_len}_rho{rho:g}"
     run = cached_recording(cache, tag, lambda: record(
         arena, test_len, seed=seed + 7919, rho=rho, sensors="ir8", kidnaps=kid,
-        start_pose=pose, progress=False))
+        start_pose=pose, progress=False), ticks=test_len)
     return run, [k for k, _ in kid]
 
 
@@ -195,7 +195,7 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
     neurons = min(args.neurons, 150) if quick else args.neurons
     rec = cached_recording(args.cache, f"{arena.name}_t{ticks}_rho{args.rho:g}",
                            lambda: record(arena, ticks, seed=seed, rho=args.rho, sensors="ir8",
-                                          progress=False))
+                                          progress=False), ticks)
     n_train = ticks * 3 // 4
     lab = room_labels(rec, rooms)
     in_room = lab >= 0

@@ -1,0 +1,56 @@
+"""--cache: a cached recording is used only when it is whole and as long as asked; a damaged
+or mismatched one is recorded again with a warning (it had been used: 'room cell nan')."""
+
+import argparse
+
+import pytest
+
+from hippo.io import save_json
+from hippo.scenarios._common import cached_recording
+from hippo.sim import arenas
+from hippo.sim.record import record
+
+
+def _build(ticks, calls):
+    def build():
+        calls.append(ticks)
+        return record(arenas.two_rooms(), ticks, seed=1, sensors="ir8", progress=False)
+    return build
+
+
+def test_a_cached_recording_is_read_back_when_it_matches(tmp_path):
+    calls = []
+    a = cached_recording(tmp_path, "k", _build(40, calls), 40)
+    b = cached_recording(tmp_path, "k", _build(40, calls), 40)
+    assert calls == [40] and len(b) == 40 and (b.sensors == a.sensors).all()
+
+
+def test_a_short_or_damaged_cache_is_recorded_again(tmp_path):
+    calls = []
+    cached_recording(tmp_path, "k", _build(30, calls), 30)
+    with pytest.warns(UserWarning, match="30 ticks, not 40"):
+        rec = cached_recording(tmp_path, "k", _build(40, calls), 40)
+    assert calls == [30, 40] and len(rec) == 40
+    assert len(cached_recording(tmp_path, "k", _build(40, calls), 40)) == 40  # now kept
+    (tmp_path / "k.npz").write_bytes(b"not a zip file")
+    with pytest.warns(UserWarning, match="unusable"):
+        rec = cached_recording(tmp_path, "k", _build(40, calls), 40)
+    assert calls == [30, 40, 40] and len(rec) == 40
+
+
+def test_a_damaged_kidnap_cache_is_recorded_again(tmp_path):
+    from hippo.scenarios._two_rooms_recordings import _recordings
+
+    args = argparse.Namespace(cache=str(tmp_path), rho=0.008)
+    _, kid, events, kinds, moved = _recordings(args, arenas.two_rooms(), 1600, 600, 2)
+    assert len(events) >= 2
+    meta = next(tmp_path.glob("*_kid2.json"))
+    again = _recordings(args, arenas.two_rooms(), 1600, 600, 2)   # read back, the same
+    assert again[2:] == (events, kinds, moved) and (again[1].sensors == kid.sensors).all()
+    for bad in ({"events": events, "kinds": kinds},                       # a key missing
+                {"events": [10 ** 9], "kinds": kinds[:1], "moved": moved[:1]},  # past the end
+                {"events": events, "kinds": kinds, "moved": moved[:-1]}):  # lengths differ
+        save_json(meta, bad)
+        with pytest.warns(UserWarning, match="kidnapped recording .* unusable"):
+            out = _recordings(args, arenas.two_rooms(), 1600, 600, 2)
+        assert out[2:] == (events, kinds, moved)
