@@ -32,6 +32,7 @@ import hashlib
 import json
 import math
 import os
+import shutil
 import types
 from pathlib import Path
 from typing import Any
@@ -195,15 +196,23 @@ def save_snapshot(obj: Any, folder: str | os.PathLike) -> Path:
     enc = _Encoder()
     tree = enc.enc(obj, type(obj).__name__)
     text = json.dumps(tree, allow_nan=False, separators=(",", ":"))
-    folder.mkdir(parents=True, exist_ok=True)
-    save_npz(folder / "arrays.npz", enc.arrays)
-    atomic_write_text(folder / "state.json", text)
-    from hippo import __version__
+    created = not folder.exists()
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        save_npz(folder / "arrays.npz", enc.arrays)
+        atomic_write_text(folder / "state.json", text)
+        from hippo import __version__
 
-    manifest = {"format": SNAPSHOT_FORMAT, "hippo": __version__,
-                "class": f"{type(obj).__module__}:{type(obj).__qualname__}",
-                "sha256": {n: _sha256(folder / n) for n in ("state.json", "arrays.npz")}}
-    atomic_write_text(folder / "manifest.json", json.dumps(manifest, indent=2) + "\n")
+        manifest = {"format": SNAPSHOT_FORMAT, "hippo": __version__,
+                    "class": f"{type(obj).__module__}:{type(obj).__qualname__}",
+                    "sha256": {n: _sha256(folder / n) for n in ("state.json", "arrays.npz")}}
+        atomic_write_text(folder / "manifest.json", json.dumps(manifest, indent=2) + "\n")
+    except BaseException:
+        # interrupted (Ctrl-C, a full disk): a folder this call made goes again; an old
+        # snapshot partly overwritten no longer matches its manifest and is refused on load
+        if created:
+            shutil.rmtree(folder, ignore_errors=True)
+        raise
     return folder
 
 

@@ -198,3 +198,33 @@ def test_a_robot_lifted_mid_match_continues_bit_identically(tmp_path):
     assert restored.places.relocaliser.reservoir is restored.places.model.reservoir_
     _continue_identically(agent, world, obs, restored, 200)
     assert rel.matched_after is not None
+
+
+def test_an_interrupted_save_leaves_no_folder_it_made(tmp_path, monkeypatch):
+    import hippo.snapshot as snap
+
+    d = Drives({"a": DriveParams()})
+
+    def interrupted(path, text):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(snap, "atomic_write_text", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        save_snapshot(d, tmp_path / "new" / "robot")
+    assert not (tmp_path / "new" / "robot").exists()   # no empty or partial snapshot
+    monkeypatch.undo()
+    save_snapshot(d, tmp_path / "old")
+    write = snap.atomic_write_text
+
+    def interrupted_at_the_manifest(path, text):
+        if path.name == "manifest.json":
+            raise KeyboardInterrupt
+        write(path, text)
+
+    monkeypatch.setattr(snap, "atomic_write_text", interrupted_at_the_manifest)
+    with pytest.raises(KeyboardInterrupt):
+        save_snapshot(Drives({"b": DriveParams(), "c": DriveParams()}), tmp_path / "old")
+    monkeypatch.undo()
+    # an old snapshot partly overwritten is kept (not ours to delete) and refused on load
+    with pytest.raises(CorruptFileError):
+        load_snapshot(tmp_path / "old")
