@@ -54,21 +54,21 @@ def patrol_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
 def choose_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
                  kind: str = "auto") -> tuple[str, Route]:
     """``(what it is, the leash route)``: ``"course"``, patrol-course's corridor loop for its
-    own checkpoints; else by ``kind``: ``"shortest"``, the shortest paths through the
-    checkpoints and back (:meth:`Route.through`, 8 cm clear of walls where it can); ``"tour"``,
-    a wall follower's loop (:func:`hippo.tasks.wall_tour`, right wall first) within
-    ``TOUR_REACH`` cm of every checkpoint; ``"auto"``: the shortest paths if they make a loop
-    (:attr:`Route.winding` not 0) that one of the arena's two wall tours runs the same way
-    round, else a tour that goes round something and passes every checkpoint, else the
-    shortest. The robot moves along a wall (:func:`hippo.tasks.wall_side`), and in
-    ``goal-arena`` no wall goes round clockwise (the right wall follower turns back at the
-    south nook), so a clockwise route was run backwards (tuning seeds 0-15, learned cells:
-    65 of 149 passes with a stop, against 190 of 254 with the tour, visited the other way).
-    Two-rooms' shortest paths run out and back (a maze's, and its tours, too)."""
+    own checkpoints with ``kind`` ``"auto"``; else by ``kind``: ``"shortest"``, the shortest
+    paths through the checkpoints and back (:meth:`Route.through`, 8 cm clear of walls where it
+    can); ``"tour"``, a wall follower's loop (:func:`hippo.tasks.wall_tour`, right wall first)
+    within ``TOUR_REACH`` cm of every checkpoint; ``"auto"``: the shortest paths if they make a
+    loop (:attr:`Route.winding` not 0) that one of the arena's two wall tours runs the same way
+    round, else a tour that goes round something and passes every checkpoint, else the shortest.
+    The robot moves along a wall (:func:`hippo.tasks.wall_side`), and in ``goal-arena`` no wall
+    goes round clockwise (the right wall follower turns back at the south nook), so a clockwise
+    route was run backwards (tuning seeds 0-15, learned cells: 65 of 149 passes with a stop,
+    against 190 of 254 with the tour, visited the other way). Two-rooms' shortest paths run out
+    and back (a maze's, and its tours, too)."""
     if kind not in ROUTE_KINDS:
         raise ValueError(f"route kind must be one of {', '.join(ROUTE_KINDS)}, got {kind!r}")
-    if arena_name == "patrol-course" and [tuple(map(float, c)) for c in checkpoints] == \
-            ARENA_CHECKPOINTS["patrol-course"]:
+    if kind == "auto" and arena_name == "patrol-course" and \
+            [tuple(map(float, c)) for c in checkpoints] == ARENA_CHECKPOINTS["patrol-course"]:
         return "course", Route(arenas.loop_waypoints())
     route = None
     if kind != "tour":

@@ -393,3 +393,14 @@ def test_the_lesson_holds_the_robot_level_with_a_checkpoint_across_the_corridor(
             held.append(float(x))
     assert held and held[0] == pytest.approx(100.0, abs=2.0)   # level with it, not before
     assert course.loop.reached(100.0, 0.0, (100.0, 25.0)) is False   # 20 cm: never
+
+
+def test_an_explicit_route_kind_is_followed_on_the_default_course_too():
+    from hippo.tasks.patrol_sets import choose_route
+
+    cps = ARENA_CHECKPOINTS["patrol-course"]
+    assert choose_route("patrol-course", cps)[0] == "course"   # auto: HIREL's corridor loop
+    for kind in ("shortest", "tour"):   # asked for: given (it had been ignored)
+        got, route = choose_route("patrol-course", cps, kind)
+        assert got == kind and route.winding != 0
+        assert all(route.distance(*c) < 30.0 for c in cps)
