@@ -173,17 +173,27 @@ def seed_ranges(text: str) -> list[int]:
     return seeds
 
 
+def _items(text: str, sep: str) -> list[str] | None:
+    """``text`` split at ``sep`` (one trailing ``sep`` allowed); None if an item is empty
+    (``'24.1,,11.6'``: a value left out is a mistake, not a shorter list)."""
+    parts = text.split(sep)
+    if len(parts) > 1 and not parts[-1].strip():
+        parts = parts[:-1]
+    return None if any(not p.strip() for p in parts) else parts
+
+
 def _comma_list(one: Callable[[str], Any], allowed: str, name: str,
                 ok: Callable[[list[Any]], bool]) -> Callable[[str], list[Any]]:
     """A parser of comma-separated values, each read by ``one``, the list accepted by ``ok``;
     any error says what is ``allowed``."""
 
     def parse(text: str) -> list[Any]:
+        parts = _items(text, ",")
         try:
-            values = [one(p) for p in text.split(",") if p.strip()]
+            values = None if parts is None else [one(p) for p in parts]
         except argparse.ArgumentTypeError:
             raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}") from None
-        if not ok(values):
+        if values is None or not ok(values):
             raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}")
         return values
 
@@ -199,7 +209,11 @@ def points(count: tuple[int, int], unit: str = "") -> Callable[[str], list[tuple
 
     def parse(text: str) -> list[tuple[float, float]]:
         out = []
-        for part in (p for p in text.split(";") if p.strip()):
+        parts = _items(text, ";")
+        if parts is None:
+            raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed} (an empty one "
+                                             "between two ';')")
+        for part in parts:
             xy = part.split(",")
             try:
                 x, y = (float(v) for v in xy)

@@ -125,6 +125,14 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["sweep", "two-rooms", "--workers", "0"], "--workers"),
     (["sweep", "two-rooms", "--param", "bogus", "1"], "bogus"),
     (["sweep", "two-rooms", "--seeds", "x"], "--seeds"),
+    # found by fuzzing: an empty item, a count meant as a seed, a grid past any machine, a
+    # value a cell's scenario refuses (it had killed the Dask workers)
+    (["run", "patrol", "--waits", "24.1,,11.6"], "--waits"),
+    (["run", "patrol", "--checkpoints", "80,11;;140,56"], "--checkpoints"),
+    (["run", "two-rooms", "--seeds", "987654"], "--seed 987654"),
+    (["run", "two-rooms", "--seeds", "0-100000000000"], "--seeds"),
+    (["sweep", "two-rooms", "--seeds", "-2"], "--seeds"),
+    (["sweep", "demo", "--param", "rho", "0.5", "2", "--", "--quick"], "--rho 2"),
 ]
 
 
