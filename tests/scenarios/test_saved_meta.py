@@ -12,7 +12,7 @@ def _meta(**changes):
     meta = {"seed": 3, "arena": "patrol-course",
             "checkpoints": [list(c) for c in ARENA_CHECKPOINTS["patrol-course"]],
             "waits": list(HIREL_WAITS[:3]), "place_cells": "learned", "explore_min": 30.0,
-            "units": 24, "places": 32, "route": "auto", "reproduced": 1.0,
+            "units": 24, "places": 40, "route": "auto", "reproduced": 1.0,
             "taught_stops": [24.8, None, 12.0]}
     meta.update(changes)
     return meta
