@@ -296,6 +296,9 @@ def out_file(text: str) -> Path:
 
 #: the place sources a closed-loop task can run on (learned is the default everywhere)
 PLACE_CELLS = ("learned", "ground-truth")
+#: the closed-loop tasks' bounds on their options (the command line and a saved robot's meta
+#: alike): exploration in simulated minutes, ICA units, place prototypes, a taught wait in s
+EXPLORE_MIN, UNITS, PLACES, WAIT_S = (5.0, 600.0), (1, 200), (1, 500), (0.5, 120.0)
 
 
 def add_place_cells(parser: argparse.ArgumentParser, *, reanchor: bool = False) -> None:

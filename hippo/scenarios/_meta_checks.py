@@ -1,12 +1,20 @@
 """Checks of a saved robot's meta (what ``--save`` wrote beside it): each field within the
-bounds its command-line option has, so that a hand-edited snapshot (checksums recomputed) is
-refused on ``--load``, naming the field, before any work."""
+bounds its command-line option has (:mod:`hippo.cli_args`), so that a hand-edited snapshot
+(checksums recomputed) is refused on ``--load``, naming the field, before any work. Choices and
+numbers go through :mod:`hippo._checks`; whole numbers are checked here, since a saved option
+may come back from JSON as ``40.0``."""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from typing import Any
+
+from hippo._checks import check_choice, check_range, check_real
+
+
+def field(key: str) -> str:
+    """How an error names a meta field."""
+    return f"the snapshot's meta {key}"
 
 
 def finite(v: Any) -> bool:
@@ -15,23 +23,21 @@ def finite(v: Any) -> bool:
 
 
 def bad_field(meta: dict, key: str, want: str) -> ValueError:
-    return ValueError(f"the snapshot's meta {key}={meta[key]!r} is not {want}")
+    return ValueError(f"{field(key)}={meta[key]!r} is not {want}")
 
 
-def check_whole(meta: dict, key: str, lo: int, hi: int) -> None:
-    """``meta[key]`` is a whole number in ``[lo, hi]`` (JSON may write it as ``3.0``)."""
-    v = meta[key]
+def check_whole(meta: dict, key: str, bounds: tuple[int, int]) -> None:
+    """``meta[key]`` is a whole number within ``bounds`` (JSON may write it as ``3.0``)."""
+    v, (lo, hi) = meta[key], bounds
     if not finite(v) or v != int(v) or not lo <= v <= hi:
         raise bad_field(meta, key, f"a whole number in [{lo}, {hi}]")
 
 
-def check_number(meta: dict, key: str, lo: float, hi: float, unit: str = "") -> None:
-    """``meta[key]`` is a finite number in ``[lo, hi]``."""
-    if not finite(meta[key]) or not lo <= meta[key] <= hi:
-        raise bad_field(meta, key, f"a number{' of ' + unit if unit else ''} in [{lo:g}, {hi:g}]")
+def check_number(meta: dict, key: str, bounds: tuple[float, float]) -> None:
+    """``meta[key]`` is a finite number within ``bounds``."""
+    check_range(field(key), check_real(field(key), meta[key]), *bounds)
 
 
-def check_choice(meta: dict, key: str, choices: Sequence[Any]) -> None:
-    """``meta[key]`` is one of ``choices``."""
-    if meta[key] not in choices:
-        raise bad_field(meta, key, f"one of {tuple(choices)}")
+def check_option(meta: dict, key: str, choices: tuple[Any, ...]) -> None:
+    """``meta[key]`` is one of ``choices`` (of the same type: ``1`` is not ``True``)."""
+    check_choice(field(key), meta[key], choices)

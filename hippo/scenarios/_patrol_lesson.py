@@ -10,9 +10,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from hippo._checks import check_choice
 from hippo.agent import Agent, AgentParams
 from hippo.cli_args import (
+    EXPLORE_MIN,
+    MAX_SEED,
     PLACE_CELLS,
+    PLACES,
+    UNITS,
+    WAIT_S,
     add_place_cells,
     integer,
     number,
@@ -24,9 +30,10 @@ from hippo.cli_args import (
 from hippo.cognitive_map import DriveParams, LocaliserParams, PlannerParams
 from hippo.scenarios._meta_checks import (
     bad_field,
-    check_choice,
     check_number,
+    check_option,
     check_whole,
+    field,
     finite,
 )
 from hippo.sim import World, arenas
@@ -50,7 +57,7 @@ def add_course_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--checkpoints", type=points((2, 4), "cm"), default=None,
                         help="2 to 4 checkpoints 'x,y;x,y;...' in cm, patrolled in this order "
                              "(default: the arena's own, see ARENA_CHECKPOINTS)")
-    parser.add_argument("--waits", type=numbers((2, 4), 0.5, 120.0, unit="s"), default=None,
+    parser.add_argument("--waits", type=numbers((2, 4), *WAIT_S, unit="s"), default=None,
                         help="one wait per checkpoint in s, comma-separated (default: HIREL's "
                              "24.1,19.1,11.6 (and 16 for a fourth))")
     parser.add_argument("--route", choices=list(ROUTE_KINDS), default="auto",
@@ -59,9 +66,9 @@ def add_course_arguments(parser: argparse.ArgumentParser) -> None:
                              "the arena (tour), or auto: the shortest paths where they make a "
                              "loop, else the tour where it passes every checkpoint")
     add_place_cells(parser)
-    parser.add_argument("--explore-min", type=number(5.0, 600.0), default=30.0,
+    parser.add_argument("--explore-min", type=number(*EXPLORE_MIN), default=30.0,
                         help="exploration, simulated minutes")
-    parser.add_argument("--units", type=integer(1, 200), default=24,
+    parser.add_argument("--units", type=integer(*UNITS), default=24,
                         help="ICA units of the place cells")
     # 40 prototypes, not place preference's 32: tuning seeds (learned, full size), passes with
     # a stop at 32 / 40 / 48 / 64: two-rooms 53 / 65 / 68 / 65 %, goal-arena 73 / 82 / 78 /
@@ -70,7 +77,7 @@ def add_course_arguments(parser: argparse.ArgumentParser) -> None:
     # pass rate of the three among the counts that keep the course's kidnap within 1 of 32's
     # (goal-arena's stops misplaced by an aliased place: 41 -> 22). Place preference keeps 32:
     # with 40 it lost 2 rewarded trials on held-out seeds 100-109 (docs/results.md)
-    parser.add_argument("--places", type=integer(1, 500), default=40,
+    parser.add_argument("--places", type=integer(*PLACES), default=40,
                         help="place prototypes read out from the ICA units (learned cells)")
     parser.add_argument("--save", type=out_dir, default=None,
                         help="write the taught robot (after exploration and the lesson) into "
@@ -172,19 +179,19 @@ def _check_meta(meta: dict) -> None:
     :func:`check_patrol` accepts (so a hand-edited snapshot is refused before any work)."""
     if meta["arena"] not in ARENA_CHECKPOINTS:
         raise ValueError(f"unknown arena {meta['arena']!r} in the snapshot")
-    check_whole(meta, "seed", 0, 2**32 - 1)
-    check_whole(meta, "units", 1, 200)
-    check_whole(meta, "places", 1, 500)
-    check_number(meta, "explore_min", 5.0, 600.0, "minutes")
-    check_choice(meta, "place_cells", PLACE_CELLS)
-    if meta_route(meta) not in ROUTE_KINDS:
-        raise bad_field(meta, "route", f"one of {ROUTE_KINDS}")
+    check_whole(meta, "seed", (0, MAX_SEED))
+    check_whole(meta, "units", UNITS)
+    check_whole(meta, "places", PLACES)
+    check_number(meta, "explore_min", EXPLORE_MIN)
+    check_option(meta, "place_cells", PLACE_CELLS)
+    check_choice(field("route"), meta_route(meta), ROUTE_KINDS)
     cps, waits = meta["checkpoints"], meta["waits"]
     if not isinstance(cps, list) or not 2 <= len(cps) <= 4 or not all(
             isinstance(c, list) and len(c) == 2 and all(finite(v) for v in c) for c in cps):
         raise bad_field(meta, "checkpoints", "2 to 4 points [x, y] in cm")
-    if not isinstance(waits, list) or not all(finite(w) and 0.5 <= w <= 120.0 for w in waits):
-        raise bad_field(meta, "waits", "a list of waits in [0.5, 120] s")
+    lo, hi = WAIT_S
+    if not isinstance(waits, list) or not all(finite(w) and lo <= w <= hi for w in waits):
+        raise bad_field(meta, "waits", f"a list of waits in [{lo:g}, {hi:g}] s")
     stops_ = meta["taught_stops"]
     if not isinstance(stops_, list) or len(stops_) != len(cps) or not all(
             v is None or (finite(v) and v >= 0) for v in stops_):

@@ -30,7 +30,11 @@ import numpy as np
 
 from hippo.agent import Agent, AgentParams
 from hippo.cli_args import (
+    EXPLORE_MIN,
+    MAX_SEED,
     PLACE_CELLS,
+    PLACES,
+    UNITS,
     add_place_cells,
     integer,
     number,
@@ -42,7 +46,7 @@ from hippo.cognitive_map import DriveParams, LocaliserParams, PlannerParams
 from hippo.io import CorruptFileError
 from hippo.progress import Progress
 from hippo.scenarios._common import prepare_out, write_metrics
-from hippo.scenarios._meta_checks import bad_field, check_choice, check_number, check_whole
+from hippo.scenarios._meta_checks import check_number, check_option, check_whole
 from hippo.sim import World, arenas
 from hippo.snapshot import load_snapshot, save_snapshot
 from hippo.tasks import (
@@ -75,7 +79,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     # rewarded paths <= 1.5 x with it, 43 of 60 without (west start: a match made before the
     # goal zone turned the robot round, up to 28 x; the south start stayed at 3.3 x)
     add_place_cells(parser)
-    parser.add_argument("--explore-min", type=number(5.0, 600.0), default=40.0,
+    parser.add_argument("--explore-min", type=number(*EXPLORE_MIN), default=40.0,
                         help="exploration time in simulated minutes (HIREL: 40)")
     parser.add_argument("--explore-rho", type=probability, default=0.0,
                         help="side-switch probability of the exploring wall follower")
@@ -84,9 +88,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--trials", type=integer(1, 1000), default=12, help="rewarded trials")
     parser.add_argument("--extinction", type=integer(0, 1000), default=4,
                         help="extinction trials")
-    parser.add_argument("--units", type=integer(1, 200), default=24,
+    parser.add_argument("--units", type=integer(*UNITS), default=24,
                         help="ICA units of the place cells")
-    parser.add_argument("--places", type=integer(1, 500), default=32,
+    parser.add_argument("--places", type=integer(*PLACES), default=32,
                         help="place prototypes read out from the ICA units (learned cells)")
     parser.add_argument("--trial-timeout", type=number(10.0, 3600.0), default=240.0,
                         help="s per trial")
@@ -149,12 +153,11 @@ def _load_robot(folder) -> dict:
 
 def _check_meta(meta: dict) -> None:
     """Each field within its option's bounds: a hand-edited snapshot is refused on --load."""
-    check_whole(meta, "seed", 0, 2**32 - 1)
-    check_choice(meta, "place_cells", PLACE_CELLS)
-    check_number(meta, "explore_min", 5.0, 600.0, "minutes")
-    check_number(meta, "explore_rho", 0.0, 1.0)
-    if not isinstance(meta["quick"], bool):
-        raise bad_field(meta, "quick", "true or false")
+    check_whole(meta, "seed", (0, MAX_SEED))
+    check_option(meta, "place_cells", PLACE_CELLS)
+    check_number(meta, "explore_min", EXPLORE_MIN)
+    check_number(meta, "explore_rho", (0.0, 1.0))
+    check_option(meta, "quick", (True, False))
 
 
 def run(args: argparse.Namespace) -> dict:
