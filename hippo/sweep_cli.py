@@ -8,7 +8,7 @@ from pathlib import Path
 
 from hippo.cli_args import Parser, integer, out_dir, seed_ranges
 from hippo.io import load_json
-from hippo.sweep import CellArgumentError, check_cells, grid, run_sweep
+from hippo.sweep import CellArgumentError, grid, run_sweep
 
 __all__ = ["sweep_main"]
 
@@ -59,12 +59,11 @@ def sweep_main(argv: Sequence[str]) -> int:
         params[name] = values
     cells = grid(a.scenario, a.seeds, params, extra)
     out = Path(a.out or f"out/sweep-{a.scenario}")
-    try:
-        check_cells(cells)
+    try:  # run_sweep parses every cell's options before anything runs (check_cells)
+        res = run_sweep(cells, out, workers=a.workers, scheduler=a.scheduler,
+                        retries=a.retries, metric=a.metric, parquet=a.parquet)
     except CellArgumentError as exc:
         ap.error(str(exc))
-    res = run_sweep(cells, out, workers=a.workers, scheduler=a.scheduler, retries=a.retries,
-                    metric=a.metric, parquet=a.parquet)
     print(f"{len(cells)} cells: {res.ran} run, {res.skipped} already done, "
           f"{len(res.failed)} failed; table {out / 'results.csv'}")
     for cid in res.failed:
