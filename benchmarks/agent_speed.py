@@ -10,6 +10,8 @@ after the place cells are fitted and the map is learned (the place-preference se
 control), for learned and ground-truth place cells, on one BLAS thread; best of ``--rounds``
 rounds, wall time and process CPU time. Targets (issue 14): agent tick <= 2 x (world +
 wall-follower tick); the full closed loop (agent + world) >= 1,500 x real time.
+``--sectors 4`` measures the patrol's setting (each place state split by the direction of
+travel: 4 x the place inputs).
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ from hippo.sim import WallFollower, World, arenas
 from hippo.tasks import PLACE_STATES, make_places
 
 
-def setup(kind: str, seed: int = 0) -> tuple[World, Agent, object]:
+def setup(kind: str, seed: int = 0, sectors: int = 1) -> tuple[World, Agent, object]:
     arena = arenas.goal_arena()
     world = World(arena, seed=seed)
     ctrl = WallFollower(rng=seed)
@@ -39,7 +41,8 @@ def setup(kind: str, seed: int = 0) -> tuple[World, Agent, object]:
         obs = world.step(ctrl.act(obs))
         sensors.append(obs.ir)
     places = make_places(kind, arena, np.array(sensors), 24, seed, 32)
-    params = AgentParams(states=PLACE_STATES, planner=PlannerParams(exploration_threshold=0.3))
+    params = AgentParams(states=PLACE_STATES, planner=PlannerParams(exploration_threshold=0.3),
+                         heading_sectors=sectors)
     agent = Agent(places, drives={"sound": DriveParams(epsilon=0.02)}, params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)
     for _ in range(2000):  # learn a map first
@@ -79,8 +82,9 @@ def one_round(agent_world, peer_world, ticks: int) -> dict[str, tuple[float, flo
              ("wall follower", t_ctrl))}
 
 
-def bench(kind: str, ticks: int, rounds: int) -> dict[str, tuple[float, float]]:
-    world, agent, obs = setup(kind)
+def bench(kind: str, ticks: int, rounds: int, sectors: int = 1
+          ) -> dict[str, tuple[float, float]]:
+    world, agent, obs = setup(kind, sectors=sectors)
     pworld = World(arenas.goal_arena(), seed=1)
     peer = [pworld, WallFollower(rng=1), pworld.reset(1)]
     loop = [world, agent, obs]
@@ -97,11 +101,13 @@ def main() -> None:
     ap.add_argument("--ticks", type=int, default=2000, help="ticks per round")
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--profile", action="store_true")
+    ap.add_argument("--sectors", type=int, default=1,
+                    help="BrainParams.heading_sectors (the patrol's learned cells use 4)")
     a = ap.parse_args()
     os.environ["HIPPO_QUIET"] = "1"
     with threadpool_limits(1):
         if a.profile:
-            world, agent, obs = setup("learned")
+            world, agent, obs = setup("learned", sectors=a.sectors)
             prof = cProfile.Profile()
             prof.enable()
             for _ in range(a.ticks):
@@ -113,7 +119,7 @@ def main() -> None:
         print(f"{'place cells':13s} {'agent':>13s} {'world':>13s} {'world+WF':>13s} "
               f"{'agent/(world+WF)':>17s} {'loop x real time':>17s}")
         for kind in ("learned", "ground-truth"):
-            b = bench(kind, a.ticks, a.rounds)
+            b = bench(kind, a.ticks, a.rounds, a.sectors)
             ag, wo = b["agent"], b["world"]
             peer = tuple(x + y for x, y in zip(b["peer world"], b["wall follower"]))
             dt = 0.2

@@ -41,6 +41,7 @@ from hippo.brain_params import BrainParams
 from hippo.cognitive_map import Action, DriveParams, Drives, Planner, TransitionGraph
 from hippo.cognitive_map.localise import MapLocaliser
 from hippo.decision import Decider
+from hippo.head_direction import HeadingSectors
 from hippo.perception.states import StateLayer
 from hippo.places import PlaceSource
 from hippo.seeds import Seeds
@@ -70,6 +71,9 @@ class Brain:
         moves) come from its stream ``"brain"`` (:mod:`hippo.seeds`), or from ``rng``.
     """
 
+    #: direction-of-travel split of the place states (``BrainParams.heading_sectors`` > 1)
+    sectors: HeadingSectors | None = None
+
     def __init__(self, places: PlaceSource | None = None, *,
                  drives: Mapping[str, DriveParams] | None = None,
                  params: BrainParams | None = None, occlusion: Any = None,
@@ -77,7 +81,10 @@ class Brain:
         self.places = places
         self.p = p = params or BrainParams()
         self.rng = rng if rng is not None else Seeds(seed).generator("brain")
-        self.layer = StateLayer(p.states, n_place=places.n_units if places is not None else 0)
+        if p.heading_sectors > 1:
+            self.sectors = HeadingSectors(p.heading_sectors)
+        n_place = places.n_units if places is not None else 0
+        self.layer = StateLayer(p.states, n_place=n_place * p.heading_sectors)
         self.timing = TimingChain(p.spectral, p.transitions, p.non_occurrence)
         self.graph = TransitionGraph()
         self.drives = Drives(dict(drives if drives is not None else {"sound": DriveParams()}))
@@ -146,6 +153,8 @@ class Brain:
         where it was (nothing for the place cells to re-anchor).
         """
         self.pi.heading = wrap_angle(self.pi.heading + heading_change)
+        if self.sectors is not None:
+            self.sectors.reset()
         getattr(self.places, "lifted", lambda: None)() if moved else None   # re-anchor?
         self.layer.reset(keep_states=True)
         self.nonocc.reset()
@@ -226,6 +235,8 @@ class Brain:
         else:
             self._clear_view = ir
             acts = self.places.step(obs, truth)
+        if self.sectors is not None:
+            acts = self.sectors.split(acts, self.pi.heading, math.hypot(dx, dy))
         if self.localiser is not None and getattr(self.places, "anchored", False):
             self.localiser.anchor(obs.t)   # the place code jumped to where the readings match
         turning = abs(float(dth)) > p.still_turn * p.dt

@@ -160,6 +160,11 @@ class BrainParams:
         the wait of a drive just served: in the patrol kidnap (tuning seeds 0-9) the robot
         stopped there in 3 of 10 runs; with the rule in 0 (kidnap 3/10 -> 6/10, passes
         155 -> 156 of 170, extra stops 2 -> 0). True by default; False: HIREL's plain rule.
+    heading_sectors: each place state is split by the direction of travel into this many
+        sectors (:class:`~hippo.head_direction.HeadingSectors`: the heading from path
+        integration, with hysteresis; 1, the default: no split). Rooms that look the same
+        turned round alias their two halves in the learned place code; the direction of
+        travel tells them apart.
     Extinction of goal links (HIREL eq. 4's decay term) is a drive's parameter
     (``DriveParams.extinction``, default 0): see :meth:`hippo.decision.Decider.check_wait`.
     """
@@ -196,6 +201,7 @@ class BrainParams:
     forget: float = 1.0
     infer_reverse: bool = False
     own_stops_only: bool = True
+    heading_sectors: int = 1
     states: StateLayerParams = field(default_factory=StateLayerParams)
     spectral: SpectralParams = field(default_factory=SpectralParams)
     #: latency 0.4 s = one tick from decision to motion + one tick of proprioceptive debounce
@@ -216,6 +222,9 @@ class BrainParams:
             raise ValueError(f"companions must be >= 0, got {self.companions}")
         if self.runup_hops < 0:
             raise ValueError(f"runup_hops must be >= 0, got {self.runup_hops}")
+        if int(self.heading_sectors) != self.heading_sectors or self.heading_sectors < 1:
+            raise ValueError(f"heading_sectors must be an integer >= 1, got "
+                             f"{self.heading_sectors!r}")
         if self.proprio_ticks < 1:
             raise ValueError(f"proprio_ticks must be >= 1, got {self.proprio_ticks}")
         check_positive("settle_time", self.settle_time, allow_zero=True)

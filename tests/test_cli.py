@@ -78,6 +78,8 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["run", "place-preference", "--explore-rho", "1.5"], "--explore-rho"),
     # patrol
     (["run", "patrol", "--waits", "1,2"], "--waits"),
+    (["run", "patrol", "--heading-sectors", "0"], "--heading-sectors"),
+    (["run", "deployment", "--heading-sectors", "2.5"], "--heading-sectors"),
     (["run", "patrol", "--waits", "a,b,c"], "--waits"),
     (["run", "patrol", "--loops", "0"], "--loops"),
     (["run", "place-preference", "--load", "/nonexistent/robot"], "--load"),

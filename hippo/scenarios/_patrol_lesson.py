@@ -49,6 +49,10 @@ from hippo.tasks.patrol import (
     choose_route,
 )
 
+#: learned place states are split by the direction of travel into 4 sectors (the rooms of
+#: two-rooms look the same turned round: docs/results.md); ground-truth fields do not alias
+LEARNED_SECTORS = 4
+
 
 def add_course_arguments(parser: argparse.ArgumentParser) -> None:
     """--arena, --checkpoints, --waits and the place cells' options."""
@@ -79,6 +83,11 @@ def add_course_arguments(parser: argparse.ArgumentParser) -> None:
     # with 40 it lost 2 rewarded trials on held-out seeds 100-109 (docs/results.md)
     parser.add_argument("--places", type=integer(*PLACES), default=40,
                         help="place prototypes read out from the ICA units (learned cells)")
+    parser.add_argument("--heading-sectors", type=integer(1, 16), default=None,
+                        help="split each place state by the direction of travel into this "
+                             "many sectors (the heading from path integration; 1: no split; "
+                             f"default {LEARNED_SECTORS} with learned place cells, 1 with "
+                             "ground truth, whose fields do not alias)")
     parser.add_argument("--save", type=out_dir, default=None,
                         help="write the taught robot (after exploration and the lesson) into "
                              "this folder as a hippo snapshot")
@@ -86,6 +95,14 @@ def add_course_arguments(parser: argparse.ArgumentParser) -> None:
                         help="skip exploration and the lesson: start from a robot written with "
                              "--save (its seed, arena, checkpoints, waits and place cells come "
                              "from the snapshot)")
+
+
+def heading_sectors(args: argparse.Namespace) -> int:
+    """``--heading-sectors``, or its default for the place cells asked for."""
+    n = getattr(args, "heading_sectors", None)
+    if n is not None:
+        return int(n)
+    return LEARNED_SECTORS if getattr(args, "place_cells", "learned") == "learned" else 1
 
 
 def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
@@ -256,7 +273,7 @@ def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
     # tuning seeds 0-9: 9/10 with it, 6/10 with the fixed 6 s settling)
     params = AgentParams(states=PLACE_STATES, relocalise=LocaliserParams(),
                          planner=PlannerParams(w=0.9, noise=0.0, exploration_threshold=0.05),
-                         wall_side=side)
+                         wall_side=side, heading_sectors=heading_sectors(args))
     agent = Agent(places, drives=dict.fromkeys(names, drive), params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)
     s = Session(world, agent, log, obs=tour[-1], phase=PatrolPhase.LEASH)

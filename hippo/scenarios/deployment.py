@@ -34,7 +34,12 @@ from hippo.io import save_figure, save_json
 from hippo.progress import Progress
 from hippo.resume import Checkpoints
 from hippo.scenarios._common import prepare_out, write_metrics
-from hippo.scenarios._patrol_lesson import add_course_arguments, check_course_args, teach_patrol
+from hippo.scenarios._patrol_lesson import (
+    add_course_arguments,
+    check_course_args,
+    heading_sectors,
+    teach_patrol,
+)
 from hippo.tasks import Log, Session
 from hippo.tasks.deployment import (
     FAILURE_KINDS,
@@ -69,6 +74,7 @@ def _meta(args: argparse.Namespace, hours: float, units: int) -> dict:
             "waits": [float(w) for w in args.waits], "place_cells": args.place_cells,
             "explore_min": float(args.explore_min), "units": int(units),
             "places": int(args.places), "route": getattr(args, "route", "auto"),
+            "heading_sectors": heading_sectors(args),
             "hours": float(hours),
             "segment_min": float(args.segment_min), "quick": bool(args.quick)}
 

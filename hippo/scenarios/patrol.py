@@ -140,6 +140,7 @@ def run(args: argparse.Namespace) -> dict:
         "route_winding": loop_route.winding, "wall_side": int(agent.p.wall_side),
         "waits_s": waits, "loops": loops,
         "quick": quick, "place_units": places.n_units,
+        "heading_sectors": int(agent.p.heading_sectors),
         "reanchor": getattr(places, "relocaliser", None) is not None,
         "loaded_from": str(args.load) if getattr(args, "load", None) is not None else None,
         # signed laps along the route (negative: run backwards), rounded off at 1e-9
