@@ -54,10 +54,6 @@ class HeadingSectors:
         self.min_step = float(min_step)
         self.sector: int | None = None
 
-    def n_states(self, n_places: int) -> int:
-        """State inputs for ``n_places`` place cells."""
-        return n_places * self.n
-
     def reset(self) -> None:
         """Forget the sector (after a lift): the next tick takes the heading's own."""
         self.sector = None

@@ -134,3 +134,18 @@ def test_the_state_layer_has_a_place_input_per_place_and_sector():
     b = _brain(4)
     _winners(b)
     assert b.layer.place_activity.size == 8
+
+
+
+def test_a_snapshot_keeps_the_sector(tmp_path):
+    # (a whole robot with sectors is snapshotted by the patrol's --save test: learned cells
+    # split in 4 by default)
+    from hippo.snapshot import load_snapshot, save_snapshot
+    a = HeadingSectors(4)
+    a.update(3.0, 1.0)
+    save_snapshot(a, tmp_path / "sectors")
+    b = load_snapshot(tmp_path / "sectors", HeadingSectors)
+    assert b.sector == a.sector == 2 and (b.n, b.width, b.margin) == (a.n, a.width, a.margin)
+    acts = np.array([0.4, 0.7])
+    for h, step in ((3.0, 1.0), (1.2, 0.0), (1.2, 1.0), (-1.6, 1.0)):
+        np.testing.assert_array_equal(a.split(acts, h, step), b.split(acts, h, step))
