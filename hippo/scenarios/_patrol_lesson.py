@@ -126,6 +126,13 @@ def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser)
             if given is not None and _plain(given) != meta[key]:
                 parser.error(f"argument {opt}: the loaded robot was taught with {key} "
                              f"{meta[key]}; leave {opt} out with --load")
+        # the split of the place states is the loaded brain's own (snapshots before it: 1)
+        had = int(args.loaded["agent"].p.heading_sectors)
+        given = getattr(args, "heading_sectors", None)
+        if given is not None and given != had:
+            parser.error(f"argument --heading-sectors: the loaded robot's place states are "
+                         f"split in {had}; leave --heading-sectors out with --load")
+        args.heading_sectors = had
         for key in _META:
             setattr(args, key, meta[key])
         args.checkpoints = [tuple(c) for c in meta["checkpoints"]]

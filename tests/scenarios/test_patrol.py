@@ -62,11 +62,13 @@ def test_a_saved_lesson_patrols_bit_for_bit_like_the_run_that_saved_it(tmp_path)
     loaded = run_scenario("patrol", ["--quick", "--load", str(tmp_path / "robot"),
                                      "--out", str(tmp_path / "b")])
     assert loaded["loaded_from"] == str(tmp_path / "robot")
+    assert loaded["heading_sectors"] == whole["heading_sectors"] == 4   # learned: split in 4
     for k in whole:
         if k not in ("wall_s", "realtime_factor", "loaded_from"):
             assert loaded[k] == whole[k], k
     # a course that contradicts the saved one, or --save with --load, is one clear error
-    for bad in (["--waits", "1,2,3"], ["--arena", "maze"], ["--save", str(tmp_path / "c")]):
+    for bad in (["--waits", "1,2,3"], ["--arena", "maze"], ["--save", str(tmp_path / "c")],
+                ["--heading-sectors", "2"]):
         with pytest.raises(SystemExit):
             run_scenario("patrol", ["--quick", "--load", str(tmp_path / "robot"), *bad,
                                     "--out", str(tmp_path / "d")])
