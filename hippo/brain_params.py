@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from hippo._checks import check_fields, check_positive
+from hippo._checks import check_fields, check_int, check_positive
 from hippo.cognitive_map import PlannerParams
 from hippo.cognitive_map.localise import LocaliserParams
 from hippo.perception.states import StateLayerParams
@@ -222,9 +222,7 @@ class BrainParams:
             raise ValueError(f"companions must be >= 0, got {self.companions}")
         if self.runup_hops < 0:
             raise ValueError(f"runup_hops must be >= 0, got {self.runup_hops}")
-        if int(self.heading_sectors) != self.heading_sectors or self.heading_sectors < 1:
-            raise ValueError(f"heading_sectors must be an integer >= 1, got "
-                             f"{self.heading_sectors!r}")
+        check_int("heading_sectors", self.heading_sectors, lo=1)
         if self.proprio_ticks < 1:
             raise ValueError(f"proprio_ticks must be >= 1, got {self.proprio_ticks}")
         check_positive("settle_time", self.settle_time, allow_zero=True)

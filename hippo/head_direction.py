@@ -28,7 +28,7 @@ import math
 
 import numpy as np
 
-from hippo._checks import check_positive
+from hippo._checks import check_int, check_positive
 
 __all__ = ["HeadingSectors"]
 
@@ -41,11 +41,10 @@ class HeadingSectors:
     counts as turning on the spot (its sector is kept)."""
 
     def __init__(self, n: int, margin: float = math.radians(10.0), min_step: float = 0.1) -> None:
-        if int(n) != n or n < 1:
-            raise ValueError(f"heading sectors must be an integer >= 1, got {n!r}")
+        n = check_int("heading sectors", n, lo=1)
         check_positive("margin", margin, allow_zero=True)
         check_positive("min_step", min_step, allow_zero=True)
-        self.n = int(n)
+        self.n = n
         self.width = 2.0 * math.pi / self.n
         if margin >= self.width / 2:
             raise ValueError(f"margin must be below half a sector ({self.width / 2:.3f} rad), "

@@ -66,7 +66,7 @@ def test_reset_takes_the_heading_as_it_is():
 
 
 @pytest.mark.parametrize("kw, match", [
-    ({"n": 0}, "integer >= 1"), ({"n": 2.5}, "integer >= 1"),
+    ({"n": 0}, "integer >= 1, got 0"), ({"n": 2.5}, "an integer, got 2.5"),
     ({"n": 4, "margin": 50 * DEG}, "below half a sector"), ({"n": 4, "margin": -0.1}, "margin"),
     ({"n": 4, "min_step": -1.0}, "min_step"),
 ])
