@@ -75,6 +75,8 @@ class PatrolCourse:
         grid = np.arange(0.0, L, 1.0)
         far = np.min(np.abs((grid[:, None] - s_cp[None, :] + L / 2) % L - L / 2), axis=1)
         self.quiet = float(grid[int(np.argmax(far))])
+        #: the checkpoints (indices) in the order the route passes them, from the first
+        self.order = sorted(range(len(s_cp)), key=lambda k: (s_cp[k] - s_cp[0]) % L)
         self.relocalised_s: float | None = None   # the kidnap's time to re-localise
 
     @property
@@ -144,8 +146,8 @@ class PatrolCourse:
 
     def teach(self, waits: Sequence[float]) -> float:
         """Settle, one loop on the leash, one loop reproduced alone, then the checkpoints
-        taught by blocks (in order, and the first once more); returns the fraction of the
-        loop reproduced."""
+        taught by blocks (in the order the route passes them, :attr:`order`, and the first
+        once more); returns the fraction of the loop reproduced."""
         s, agent, dt = self.s, self.agent, self.dt
         # let the place cells settle on the course before the leash (not moved: no re-anchoring)
         agent.lifted(moved=False)
@@ -173,9 +175,9 @@ class PatrolCourse:
         # run is no run-up, and the lessons up to it are given again after the rest, in order
         # (held-out seeds 140-159: each of the 6 seeds that failed had such a lesson)
         s.phase = PatrolPhase.CHECKPOINTS
-        order, again = [*range(len(self.checkpoints)), 0], set()
+        order, again = [*self.order, 0], set()
         with Progress(len(order), "checkpoints") as bar:
-            for k in order:
+            for i, k in enumerate(order):
                 c = self.checkpoints[k]
                 s.trial = k
                 agent.drives.inhibit(self.names[k])
@@ -187,7 +189,7 @@ class PatrolCourse:
                 alone = self.reached(c)
                 if not alone:
                     s.lead(self.from_here(self.route.leg(s.truth.pose, c)))
-                    lessons_again(order, k, again)
+                    lessons_again(order, i, again)
                 s.block(waits[k])
                 agent.reward(self.names[k], runup=alone)
                 s.run(int(10 / dt),

@@ -50,11 +50,20 @@ class Experimenter:
         return False
 
 
-def lessons_again(order: list[int], k: int, again: set[int]) -> None:
-    """The lesson at checkpoint ``k`` of a patrol taught in ``order`` (``[0, 1, ..., n-1,
-    0]``) needed the leash (the robot went astray): append the lessons ``1..k`` once more, in
-    order, so that ``k`` is taught again after the one before it, as its run-up needs. Once
-    per checkpoint (``again`` keeps which); nothing for checkpoint 0, taught twice anyway."""
-    if k and k not in again:
-        again.add(k)
-        order += range(1, k + 1)
+def lessons_again(order: list[int], at: int, again: set[int]) -> None:
+    """The lesson at position ``at`` of a patrol's teaching ``order`` needed the leash (the
+    robot went astray). ``order`` starts as the chain ``[c0, c1, ..., c(n-1), c0]`` (the
+    checkpoints the way the route passes them, the first once more); the lessons of the chain
+    from ``c1`` up to the failed one are appended once more, in order, but for those already
+    pending after ``at``, so that it is taught again after the one before it, as its run-up
+    needs. Once per checkpoint (``again`` keeps which); nothing for ``c0``, taught twice
+    anyway. (Appending ``c1..k`` whole for each failure taught ``c1`` twice in a row when
+    ``c1`` and ``c2`` both needed the leash: ``c1``'s run-up became a whole lap, tuning seed
+    4 of goal-arena.)"""
+    k, first = order[at], order[0]
+    if k == first or k in again:
+        return
+    again.add(k)
+    chain = order[:order.index(first, 1)]
+    pending = order[at + 1:]
+    order += [j for j in chain[1:chain.index(k) + 1] if j not in pending]

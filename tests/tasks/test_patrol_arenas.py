@@ -221,6 +221,24 @@ def _course_on_patrol_course() -> tuple:
     return PatrolCourse(s, route, cps, ["a", "b", "c"]), route, cps, pose
 
 
+def test_the_lesson_teaches_the_checkpoints_in_the_order_the_route_passes_them():
+    # a wall tour ignores the order the checkpoints were given in; taught 1, 2, 3 on a tour
+    # that passes 1, 3, 2, every run-up spanned another checkpoint and the robot's own order
+    # never matched the taught one (tuning seed 4 of goal-arena)
+    from types import SimpleNamespace
+
+    from hippo.tasks.patrol import PatrolCourse
+
+    c0, c1, c2 = ARENA_CHECKPOINTS["patrol-course"]
+    route = patrol_route("patrol-course", [c0, c1, c2])
+    s = SimpleNamespace(agent=None, world=SimpleNamespace(dt=0.2),
+                        truth=SimpleNamespace(pose=[0.0, 0.0, 0.0]))
+    assert PatrolCourse(s, route, [c0, c1, c2], ["a", "b", "c"]).order == [0, 1, 2]
+    assert PatrolCourse(s, route, [c0, c2, c1], ["a", "b", "c"]).order == [0, 2, 1]
+    assert PatrolCourse(s, route, [c2, c0, c1], ["a", "b", "c"]).order == [0, 1, 2]
+    assert PatrolCourse(s, route, [c1, c0], ["a", "b"]).order == [0, 1]
+
+
 def test_the_lesson_blocks_the_robot_at_a_checkpoint_not_before_it():
     course, route, cps, pose = _course_on_patrol_course()
     s_cp = route.progress(*cps[1])

@@ -122,6 +122,21 @@ def test_a_lesson_that_needed_the_leash_is_given_again_after_the_one_before_it()
     assert order == [0, 1, 2, 0, 1, 2]
     lessons_again(order, 2, again)            # once per checkpoint
     lessons_again(order, 0, again)            # 0 is taught twice anyway
-    assert order == [0, 1, 2, 0, 1, 2]
+    lessons_again(order, 3, again)
+    assert order == [0, 1, 2, 0, 1, 2] and again == {2}
+
+
+def test_lessons_given_again_form_one_chain_when_two_needed_the_leash():
+    from hippo.tasks.teaching import lessons_again
+
+    # 1 and then 2 needed the leash: 1 is not taught twice in a row (its run-up would be a
+    # whole lap), the repeated lessons run 0 -> 1 -> 2 like the first ones
+    order, again = [0, 1, 2, 0], set()
     lessons_again(order, 1, again)
-    assert order == [0, 1, 2, 0, 1, 2, 1] and again == {1, 2}
+    assert order == [0, 1, 2, 0, 1]
+    lessons_again(order, 2, again)
+    assert order == [0, 1, 2, 0, 1, 2] and again == {1, 2}
+    # the chain is the route's order, not the checkpoints' numbers
+    order, again = [0, 2, 1, 0], set()
+    lessons_again(order, 2, again)            # checkpoint 1, the route's third, went astray
+    assert order == [0, 2, 1, 0, 2, 1]
