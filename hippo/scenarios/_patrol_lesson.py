@@ -62,7 +62,8 @@ def add_course_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the world to patrol (default: patrol-course)")
     parser.add_argument("--checkpoints", type=points((2, 4), "cm"), default=None,
                         help="2 to 4 checkpoints 'x,y;x,y;...' in cm, patrolled in this order "
-                             "(default: the arena's own, see ARENA_CHECKPOINTS)")
+                             "(on a wall tour: in the order the tour meets them, from the "
+                             "first) (default: the arena's own, see ARENA_CHECKPOINTS)")
     parser.add_argument("--waits", type=numbers((2, 4), *WAIT_S, unit="s"), default=None,
                         help="one wait per checkpoint in s, comma-separated (default: HIREL's "
                              "24.1,19.1,11.6 (and 16 for a fourth))")
