@@ -287,7 +287,7 @@ def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
     agent = Agent(places, drives=dict.fromkeys(names, drive), params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)
     s = Session(world, agent, log, obs=tour[-1], phase=PatrolPhase.LEASH)
-    course = PatrolCourse(s, route, checkpoints, names)
+    course = PatrolCourse(s, route, checkpoints, names, tour=kind == "tour")
     reproduced = course.teach(list(args.waits))
     taught = stops(s.log.arrays(), checkpoints, world.robot.moving_threshold,
                    taught_phase=PatrolPhase.CHECKPOINTS)

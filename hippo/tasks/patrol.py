@@ -43,6 +43,15 @@ __all__ = [
     "check_patrol", "choose_route", "pass_report", "patrol_rounds", "patrol_route", "random_patrol",
 ]
 
+#: a lesson's run from one checkpoint to the next on a wall tour longer than ``DETOUR_RATIO``
+#: x the route's leg + ``DETOUR_SLACK`` cm went out of its way (:meth:`PatrolCourse.detour`):
+#: read off the tuning lessons (two-rooms and goal-arena 0-23: run / leg median 0.99; a robot
+#: that wandered taught two-rooms seed 17 a 140-cm run-up for a 103-cm leg, and the run-up
+#: gate then held every stop there until the robot had left the place). Not on the shortest
+#: paths: the robot crosses rooms along their walls, 2-4 x those legs (two-rooms 10, 22)
+DETOUR_RATIO = 1.25
+DETOUR_SLACK = 10.0
+
 
 class PatrolPhase(IntEnum):
     EXPLORATION = 0
@@ -64,7 +73,7 @@ class PatrolCourse:
     never straddles the end of a phase."""
 
     def __init__(self, s: Session, route: Route, checkpoints: Sequence[Sequence[float]],
-                 names: Sequence[str]) -> None:
+                 names: Sequence[str], *, tour: bool = False) -> None:
         self.s, self.agent, self.dt = s, s.agent, s.world.dt
         self.route = route
         self.checkpoints = [tuple(map(float, c)) for c in checkpoints]
@@ -78,6 +87,7 @@ class PatrolCourse:
         #: the checkpoints (indices) in the order the route passes them, from the first
         self.order = sorted(range(len(s_cp)), key=lambda k: (s_cp[k] - s_cp[0]) % L)
         self.relocalised_s: float | None = None   # the kidnap's time to re-localise
+        self.tour = tour   # the route is the wall tour the robot explored along (its own way)
 
     @property
     def lap_s(self) -> float:
@@ -176,6 +186,7 @@ class PatrolCourse:
         # (held-out seeds 140-159: each of the 6 seeds that failed had such a lesson)
         s.phase = PatrolPhase.CHECKPOINTS
         order, again = [*self.order, 0], set()
+        since: tuple[int, tuple[float, float]] | None = None  # log row, pose at the last reward
         with Progress(len(order), "checkpoints") as bar:
             for i, k in enumerate(order):
                 c = self.checkpoints[k]
@@ -190,13 +201,30 @@ class PatrolCourse:
                 if not alone:
                     s.lead(self.from_here(self.route.leg(s.truth.pose, c)))
                     lessons_again(order, i, again)
+                elif (self.tour and since is not None and k not in again
+                      and self.detour(order[i - 1], k, s.log.path_length(*since))):
+                    # it came by itself after a detour: no run-up, and the lesson is given
+                    # again (but the first checkpoint's: that one then has none)
+                    alone = False
+                    lessons_again(order, i, again)
                 s.block(waits[k])
                 agent.reward(self.names[k], runup=alone)
+                since = (len(s.log), (float(s.truth.pose[0]), float(s.truth.pose[1])))
                 s.run(int(10 / dt),
                       until=lambda o: self.state_kind() not in (None, StateKind.STILL))
                 agent.drives.release(self.names[k])
                 bar.update()
         return reproduced
+
+    def detour(self, a: int, b: int, ran: float) -> bool:
+        """Did a robot that ran ``ran`` cm from checkpoint ``a`` to checkpoint ``b`` go out of
+        its way: more than ``DETOUR_RATIO`` times the route's leg between them and
+        ``DETOUR_SLACK`` cm more? On a wall tour (``tour``) the teacher takes such a run for
+        no run-up, as one that needed the leash, and gives the lesson again."""
+        L = self.route.length
+        leg = (self.route.progress(*self.checkpoints[b])
+               - self.route.progress(*self.checkpoints[a])) % L
+        return ran > DETOUR_RATIO * leg + DETOUR_SLACK
 
     def drives_up(self) -> None:
         """Every drive up to 1, but that of the checkpoint the lesson served last (the first

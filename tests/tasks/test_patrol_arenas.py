@@ -239,6 +239,23 @@ def test_the_lesson_teaches_the_checkpoints_in_the_order_the_route_passes_them()
     assert PatrolCourse(s, route, [c1, c0], ["a", "b"]).order == [0, 1]
 
 
+def test_a_lesson_run_far_longer_than_the_routes_leg_is_a_detour():
+    # two-rooms tuning seed 17: a robot that wandered was taught a 140-cm run-up for a 103-cm
+    # leg, and the run-up gate held every stop there until it had left the place
+    from hippo.tasks.patrol import DETOUR_RATIO, DETOUR_SLACK
+
+    course, route, cps, _ = _course_on_patrol_course()
+    assert course.tour is False               # checked in the lesson only on a wall tour
+    s = [route.progress(*c) for c in cps]
+    leg01, leg20 = s[1] - s[0], (s[0] - s[2]) % route.length   # the last leg wraps round
+    assert 50.0 < leg01 < leg20 < route.length
+    for a, b, leg in ((0, 1, leg01), (2, 0, leg20)):
+        limit = DETOUR_RATIO * leg + DETOUR_SLACK
+        assert not course.detour(a, b, leg)                 # straight along the route
+        assert not course.detour(a, b, limit - 0.5)
+        assert course.detour(a, b, limit + 0.5)
+
+
 def test_the_lesson_blocks_the_robot_at_a_checkpoint_not_before_it():
     course, route, cps, pose = _course_on_patrol_course()
     s_cp = route.progress(*cps[1])
