@@ -84,6 +84,7 @@ class PatrolCourse:
         grid = np.arange(0.0, L, 1.0)
         far = np.min(np.abs((grid[:, None] - s_cp[None, :] + L / 2) % L - L / 2), axis=1)
         self.quiet = float(grid[int(np.argmax(far))])
+        self._s_cp = s_cp   # each checkpoint's progress along the route
         #: the checkpoints (indices) in the order the route passes them, from the first
         self.order = sorted(range(len(s_cp)), key=lambda k: (s_cp[k] - s_cp[0]) % L)
         self.relocalised_s: float | None = None   # the kidnap's time to re-localise
@@ -221,9 +222,7 @@ class PatrolCourse:
         its way: more than ``DETOUR_RATIO`` times the route's leg between them and
         ``DETOUR_SLACK`` cm more? On a wall tour (``tour``) the teacher takes such a run for
         no run-up, as one that needed the leash, and gives the lesson again."""
-        L = self.route.length
-        leg = (self.route.progress(*self.checkpoints[b])
-               - self.route.progress(*self.checkpoints[a])) % L
+        leg = float(self._s_cp[b] - self._s_cp[a]) % self.route.length
         return ran > DETOUR_RATIO * leg + DETOUR_SLACK
 
     def drives_up(self) -> None:
