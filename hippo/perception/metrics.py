@@ -193,11 +193,52 @@ def decode_locations(Y: np.ndarray, mapping: np.ndarray) -> np.ndarray:
     return np.asarray(mapping)[np.argmax(Y, axis=1)]
 
 
-def decoding_accuracy(Y: np.ndarray, labels: np.ndarray, mapping: np.ndarray,
+def fit_centroid_decoder(Y: np.ndarray, labels: np.ndarray, n_locations: int) -> np.ndarray:
+    """Each location's centroid: the mean output vector over the training samples taken there,
+    shape (n_locations, units); a location the training data never visited has a NaN row.
+
+    The population read-out of place cells (every unit's rate, not only the winner's), as a
+    rate-map template decoder reads a recorded ensemble: only the centroids are learned from
+    labels, the units themselves were learned without them."""
+    lab = _check_labels(labels, n_locations)
+    Y = _check_Y(Y, lab.size)
+    sums = np.zeros((n_locations, Y.shape[1]))
+    np.add.at(sums, lab, Y)
+    count = np.bincount(lab, minlength=n_locations)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return sums / count[:, None]  # 0 / 0 = NaN: never visited
+
+
+def decode_nearest_centroid(Y: np.ndarray, centroids: np.ndarray, *,
+                            chunk: int = 4096) -> np.ndarray:
+    """Decoded location per sample: the location whose centroid is nearest (Euclidean);
+    locations with a NaN (or infinite) centroid are never chosen. ``chunk`` rows at a time,
+    so memory stays at chunk × locations × units."""
+    Y = _check_Y(Y)
+    c = np.asarray(centroids, float)
+    if c.ndim != 2 or c.shape[1] != Y.shape[1]:
+        raise ValueError(f"centroids must be (locations, {Y.shape[1]}) for {Y.shape[1]} "
+                         f"units, got shape {c.shape}")
+    usable = np.all(np.isfinite(c), axis=1)
+    if not usable.any():
+        raise ValueError("no location has a centroid (the training data visited none)")
+    idx = np.flatnonzero(usable)
+    out = np.empty(len(Y), int)
+    for a in range(0, len(Y), chunk):
+        d = ((Y[a:a + chunk, None, :] - c[None, idx, :]) ** 2).sum(axis=2)
+        out[a:a + chunk] = idx[np.argmin(d, axis=1)]
+    return out
+
+
+def decoding_accuracy(Y: np.ndarray, labels: np.ndarray, decoder: np.ndarray,
                       neighbors: np.ndarray | None = None) -> tuple[float, float]:
-    """(exact, within-one-step) accuracy of the winner decoder on ``Y`` (e.g. test data)."""
+    """(exact, within-one-step) accuracy of a decoder on ``Y`` (e.g. test data). ``decoder``:
+    a unit → location mapping (1-D, :func:`fit_winner_decoder`: the winning unit's location) or
+    location centroids (2-D, :func:`fit_centroid_decoder`: the nearest centroid's location)."""
     lab = _check_labels(labels)
-    pred = decode_locations(_check_Y(Y, lab.size), mapping)
+    Y = _check_Y(Y, lab.size)
+    dec = np.asarray(decoder)
+    pred = decode_nearest_centroid(Y, dec) if dec.ndim == 2 else decode_locations(Y, dec)
     exact = float(np.mean(pred == lab)) if lab.size else float("nan")
     if neighbors is None:
         return exact, exact

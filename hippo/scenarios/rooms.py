@@ -166,11 +166,6 @@ def _kidnapped_run(arena, rec: Recording, n_train: int, test_len: int, seed: int
     return run, [k for k, _ in kid]
 
 
-def _nearest_centroid(Y: np.ndarray, centroids: np.ndarray) -> np.ndarray:
-    d = ((Y[:, None, :] - centroids[None, :, :]) ** 2).sum(axis=2)
-    return np.argmin(d, axis=1)
-
-
 def _room_cells_mean(Y: np.ndarray, lab: np.ndarray, n_train: int, n: int) -> float:
     """For ``--select``'s analysis: the mean over rooms of the room cell's test balanced
     accuracy (unit, threshold and sign chosen on the training part; corridors left out)."""
@@ -234,9 +229,8 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
         cells.append(c)
         m = in_room[te]
         bacc.append(M.balanced_accuracy(c.predict(Y[te])[m], (lab[te] == r)[m]))
-    cent = np.stack([Y[tr][lab[tr] == r].mean(axis=0) if np.any(lab[tr] == r)
-                     else np.full(units, np.inf) for r in range(n)])
-    dec = _nearest_centroid(Y, cent)
+    cent = M.fit_centroid_decoder(Y[tr][in_room[tr]], lab[tr][in_room[tr]], n)
+    dec = M.decode_nearest_centroid(Y, cent)
     m = in_room[te]
     recall = [float(np.mean(dec[te][m][lab[te][m] == r] == r)) if np.any(lab[te][m] == r)
               else np.nan for r in range(n)]
@@ -268,7 +262,7 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
     # the test run continues the training run: the reservoir (and the slow pool) carry on
     Yk = model.transform(np.concatenate([rec.sensors[:n_train], run.sensors]))[n_train:]
     lab_k = room_labels(run, rooms)
-    dec_k = _nearest_centroid(Yk, cent)
+    dec_k = M.decode_nearest_centroid(Yk, cent)
     correct = (dec_k == lab_k) | (lab_k < 0)
     real = [e for e in events if 0 < e < len(run) and lab_k[e] >= 0 and lab_k[e - 1] != lab_k[e]]
     rec_t = M.recovery_times(correct, real, hold=args.hold)

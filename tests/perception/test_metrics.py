@@ -49,6 +49,37 @@ def test_decoding_accuracy():
     assert exact < 0.2 and near > 0.8
 
 
+def test_centroid_decoder_reads_a_population_code_the_winner_cannot():
+    # two ramp units code the position along the track together; neither is a place cell
+    labels, _, loc = _track()
+    x = labels / 7.0
+    Y = np.column_stack([x, 1.0 - x])
+    cent = M.fit_centroid_decoder(Y, labels, 9)
+    np.testing.assert_allclose(cent[:8], np.column_stack([np.arange(8) / 7, 1 - np.arange(8) / 7]))
+    assert np.isnan(cent[8]).all()  # location 8 was never visited: NaN, never decoded
+    nb = M.location_neighbors(np.vstack([loc, [[500.0, 0.0]]]))
+    assert M.decoding_accuracy(Y, labels, cent, nb) == (1.0, 1.0)
+    winner = M.decoding_accuracy(Y, labels, M.fit_winner_decoder(Y, labels, 9), nb)
+    assert winner[0] < 0.3  # the winner names only the two ends of the track
+    # a sample halfway between locations 2 and 3 goes to the nearer centroid
+    assert M.decode_nearest_centroid(np.array([[2.4 / 7, 1 - 2.4 / 7]]), cent)[0] == 2
+
+
+def test_centroid_decoder_in_chunks_and_bad_input():
+    rng = np.random.default_rng(0)
+    labels = rng.integers(0, 5, 1000)
+    Y = rng.normal(size=(1000, 3)) + labels[:, None]
+    cent = M.fit_centroid_decoder(Y, labels, 5)
+    np.testing.assert_array_equal(M.decode_nearest_centroid(Y, cent, chunk=7),
+                                  M.decode_nearest_centroid(Y, cent))
+    with pytest.raises(ValueError, match="centroids must be"):
+        M.decode_nearest_centroid(Y, cent[:, :2])
+    with pytest.raises(ValueError, match="no location has a centroid"):
+        M.decode_nearest_centroid(Y, np.full((5, 3), np.nan))
+    with pytest.raises(ValueError, match="labels"):
+        M.fit_centroid_decoder(Y, labels, 4)
+
+
 def test_place_fields():
     labels, Y, loc = _track()
     F = M.place_fields_locations(labels, Y, 9)
