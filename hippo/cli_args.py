@@ -298,13 +298,32 @@ def out_file(text: str) -> Path:
 PLACE_CELLS = ("learned", "ground-truth")
 #: the closed-loop tasks' bounds on their options (the command line and a saved robot's meta
 #: alike): exploration in simulated minutes, ICA units, place prototypes, a taught wait in s
-EXPLORE_MIN, UNITS, PLACES, WAIT_S = (5.0, 600.0), (1, 200), (1, 500), (0.5, 120.0)
+#: (from :data:`hippo.tasks.patrol_sets.MIN_WAIT_S`: shorter waits are never reproduced)
+EXPLORE_MIN, UNITS, PLACES, WAIT_S = (5.0, 600.0), (1, 200), (1, 500), (2.0, 120.0)
+
+
+class _Given(argparse.Action):
+    """Store the value and note that it was given (``<dest>_given``), so that an option a
+    loaded snapshot fixes can be refused when it differs, not overridden in silence."""
+
+    def __call__(self, parser, namespace, values, option_string=None) -> None:
+        setattr(namespace, self.dest, values)
+        setattr(namespace, f"{self.dest}_given", True)
+
+
+def check_loaded_place_cells(args: argparse.Namespace, parser: argparse.ArgumentParser,
+                             saved: str) -> None:
+    """With ``--load``, a ``--place-cells`` other than the snapshot's ``saved`` is refused."""
+    if getattr(args, "place_cells_given", False) and args.place_cells != saved:
+        parser.error(f"argument --place-cells: the loaded robot was taught with {saved} "
+                     "place cells; leave --place-cells out with --load")
 
 
 def add_place_cells(parser: argparse.ArgumentParser, *, reanchor: bool = False) -> None:
     """``--place-cells learned|ground-truth`` and ``--[no-]reanchor`` (default ``reanchor``):
     the options every closed-loop task shares."""
     parser.add_argument("--place-cells", choices=PLACE_CELLS, default="learned",
+                        action=_Given,
                         help="learned from the robot's sensors, or Gaussian fields on the true "
                              "position (to measure what learning costs)")
     parser.add_argument("--reanchor", action=argparse.BooleanOptionalAction, default=reanchor,

@@ -118,7 +118,11 @@ class GroundTruthPlaceCells:
     kind = "ground-truth"
 
     def __init__(self, centres: np.ndarray, sigma: float = 10.0) -> None:
-        self.centres = check_finite("centres", centres).reshape(-1, 2)
+        c = check_finite("centres", centres)
+        if c.ndim != 2 or c.shape[1] != 2:
+            raise ValueError(f"centres must be an (N, 2) array of (x, y) in cm, got shape "
+                             f"{c.shape}")
+        self.centres = c
         if len(self.centres) == 0:
             raise ValueError("GroundTruthPlaceCells needs at least one centre")
         self.sigma = check_positive("sigma", sigma)

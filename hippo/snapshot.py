@@ -193,6 +193,9 @@ def save_snapshot(obj: Any, folder: str | os.PathLike) -> Path:
     simulator or a lambda). Returns the folder.
     """
     folder = Path(folder)
+    if folder.exists() and not folder.is_dir():
+        raise NotADirectoryError(f"{folder} is a file: a snapshot is a folder (give a new or "
+                                 "an existing folder)")
     enc = _Encoder()
     tree = enc.enc(obj, type(obj).__name__)
     text = json.dumps(tree, allow_nan=False, separators=(",", ":"))

@@ -3,6 +3,8 @@ Dask distributed)."""
 
 from __future__ import annotations
 
+import sys
+import warnings
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -56,18 +58,42 @@ def sweep_main(argv: Sequence[str]) -> int:
                      f"(choose from: {', '.join(sorted(known - {'out', 'seed', 'h', 'help'}))})")
         if not values:
             ap.error(f"--param {name} needs at least one value")
+        if name in params:
+            ap.error(f"--param {name} is given twice: list all its values after one --param")
+        twice = sorted({v for v in values if values.count(v) > 1})
+        if twice:
+            ap.error(f"--param {name} lists {', '.join(twice)} more than once")
         params[name] = values
+    # options after -- go to every cell alike: none may set what the sweep sets per cell
+    for tok in extra:
+        opt = tok.split("=", 1)[0]
+        name = opt.lstrip("-")
+        if not opt.startswith("--"):
+            continue
+        if name in ("seed", "seeds", "out"):
+            ap.error(f"{opt} after --: the sweep sets each cell's seed and output folder "
+                     "(use hippo sweep's --seeds and --out)")
+        if name in params:
+            ap.error(f"{opt} after -- is also a --param of the sweep: give its values there")
     cells = grid(a.scenario, a.seeds, params, extra)
     out = Path(a.out or f"out/sweep-{a.scenario}")
     try:  # run_sweep parses every cell's options before anything runs (check_cells)
-        res = run_sweep(cells, out, workers=a.workers, scheduler=a.scheduler,
-                        retries=a.retries, metric=a.metric, parquet=a.parquet)
+        with warnings.catch_warnings():   # a --metric no cell has: said below, and exit 1
+            warnings.filterwarnings("ignore", message="no summary figure")
+            res = run_sweep(cells, out, workers=a.workers, scheduler=a.scheduler,
+                            retries=a.retries, metric=a.metric, parquet=a.parquet)
     except CellArgumentError as exc:
         ap.error(str(exc))
     print(f"{len(cells)} cells: {res.ran} run, {res.skipped} already done, "
           f"{len(res.failed)} failed; table {out / 'results.csv'}")
+    missing = a.metric is not None and res.rows and not any(a.metric in r for r in res.rows)
+    if missing:
+        have = sorted({k for r in res.rows for k, v in r.items()
+                       if isinstance(v, int | float) and not isinstance(v, bool)})
+        print(f"hippo sweep: no summary figure: no cell has the metric {a.metric!r} (the "
+              f"table has: {', '.join(have)})", file=sys.stderr)
     for cid in res.failed:
         rec = load_json(out / "cells" / f"{cid}.json")
         print(f"  FAILED {cid} (seed {rec['seed']}, {rec['params']}) after {rec['attempts']} "
               f"attempt(s): {rec['error']}")
-    return 0 if res.ok else 1
+    return 0 if res.ok and not missing else 1

@@ -113,6 +113,10 @@ def test_bad_input_is_refused():
         AgentParams(wall_tolerance=0.0)
     with pytest.raises(ValueError, match="centre"):
         GroundTruthPlaceCells(np.zeros((0, 2)))
+    # (N, 3) or flat centres were reshaped into other centres, silently
+    for bad in (np.zeros((4, 3)), np.arange(6.0)):
+        with pytest.raises(ValueError, match=r"centres must be an \(N, 2\) array"):
+            GroundTruthPlaceCells(bad)
     with pytest.raises(TypeError, match="unknown parameter"):
         AgentParams(setle_time=1.0)
 

@@ -39,6 +39,8 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["run", "two-rooms", "--ticks", "-5"], "--ticks"),
     (["run", "two-rooms", "--ticks", "many"], "--ticks"),
     (["run", "two-rooms", "--neurons", "0"], "--neurons"),
+    (["run", "two-rooms", "--neurons", "1"], "--neurons"),   # 2 leak groups need 2 neurons
+    (["run", "rooms", "--neurons", "2", "--leak", "0.1,0.2,0.3"], "--neurons"),
     (["run", "two-rooms", "--n-ica", "10"], "--n-ica"),
     (["run", "two-rooms", "--n-sfa", "0"], "--n-sfa"),
     (["run", "two-rooms", "--rho", "-1"], "--rho"),
@@ -78,6 +80,7 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["run", "place-preference", "--explore-rho", "1.5"], "--explore-rho"),
     # patrol
     (["run", "patrol", "--waits", "1,2"], "--waits"),
+    (["run", "patrol", "--waits", "1,10,10"], "--waits"),   # shorter than 2 s: not reproduced
     (["run", "patrol", "--heading-sectors", "0"], "--heading-sectors"),
     (["run", "deployment", "--heading-sectors", "2.5"], "--heading-sectors"),
     (["run", "patrol", "--waits", "a,b,c"], "--waits"),

@@ -115,3 +115,18 @@ def test_json_is_strict_a_nan_or_infinity_is_written_as_null(tmp_path):
     assert back == {"nan": None, "list": [1.5, None, None], "array": [[0.25, None]],
                     "ints": [0, 1], "n": 7, "nested": [{"x": None}, "text"]}
     assert io.load_json(path) == back
+
+
+def test_writing_onto_a_folder_or_a_snapshot_onto_a_file_names_the_mistake(tmp_path):
+    # found by trying inputs nobody listed: RCSFAICA.save(".") raised the OS's "Device or
+    # resource busy" from os.replace, and save_snapshot onto a file pathlib's FileExistsError
+    from hippo.snapshot import save_snapshot
+
+    with pytest.raises(IsADirectoryError, match="is a folder: give a file name"):
+        io.atomic_write_text(tmp_path, "x")
+    a_file = tmp_path / "notes.txt"
+    a_file.write_text("mine")
+    with pytest.raises(NotADirectoryError, match="is a file: a snapshot is a folder"):
+        save_snapshot({"a": 1}, a_file)
+    assert a_file.read_text() == "mine" and sorted(p.name for p in tmp_path.iterdir()) == [
+        "notes.txt"]

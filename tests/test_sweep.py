@@ -167,6 +167,23 @@ def test_cli_names_a_bad_parameter(capsys):
         assert bad[0] in capsys.readouterr().err
 
 
+def test_cli_refuses_a_grid_the_options_after_dashes_would_override(tmp_path, capsys):
+    # these ran, silently: "-- --delay 9" ran every delay cell at 9 s while the table said 3;
+    # "-- --seed 7 --out X" ran seed 7 into X for every cell; a repeated --param kept its last
+    base = ["timing-demo", "--out", str(tmp_path / "s")]
+    for args, says in ((["--param", "delay", "3", "--", "--quick", "--delay", "9"],
+                        "--delay after -- is also a --param"),
+                       (["--", "--quick", "--delay=9", "--seed", "7"], "--seed after --"),
+                       (["--", "--out", str(tmp_path / "x")], "--out after --"),
+                       (["--param", "delay", "3", "--param", "delay", "5"],
+                        "--param delay is given twice"),
+                       (["--param", "delay", "3", "3", "5"], "lists 3 more than once")):
+        with pytest.raises(SystemExit) as exc:
+            sweep_main(base + args)
+        assert exc.value.code == 2 and says in capsys.readouterr().err
+    assert not (tmp_path / "s").exists() and not (tmp_path / "x").exists()
+
+
 def test_a_value_its_scenario_refuses_is_named_before_anything_runs(tmp_path, capsys):
     # the scenario's own refusal (argparse exits) used to kill the Dask worker that ran the
     # cell, so that every cell was reported lost (KilledWorker) and --retries was ignored
@@ -205,6 +222,12 @@ def test_cli_sweep_of_a_real_scenario(tmp_path, capsys):
     assert len(rows) == 2 and all(r["status"] == "ok" for r in rows)
     assert "1 cells" not in capsys.readouterr().out
     assert all(load_json(out / "cells" / f"{r['cell']}.json")["metrics"] for r in rows)
+    # a --metric no cell has: the finished cells are kept, the CLI says so and exits 1
+    code = sweep_main(["timing-demo", "--seeds", "0-1", "--param", "delay", "2", "--workers",
+                       "1", "--out", str(out), "--metric", "nope", "--", "--quick",
+                       "--reproductions", "1"])
+    err = capsys.readouterr().err
+    assert code == 1 and "no cell has the metric 'nope'" in err and "delay" in err
 
 
 @pytest.mark.slow

@@ -104,7 +104,8 @@ class RobotEnv(gym.Env):
             raise RuntimeError("call reset() before step()")
         a = np.asarray(action, dtype=float).reshape(-1)
         if a.shape != (2,) or not np.all(np.isfinite(a)):
-            raise ValueError(f"action must be two finite wheel speeds in [-1, 1], got {action!r}")
+            raise ValueError(f"action must be two finite wheel speeds (in [-1, 1]; beyond it "
+                             f"they are clipped), got {action!r}")
         wheels = np.clip(a, -1.0, 1.0) * self.world.robot.speed_max
         obs = self.world.step(wheels)
         self._last = obs

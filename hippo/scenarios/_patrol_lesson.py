@@ -20,6 +20,7 @@ from hippo.cli_args import (
     UNITS,
     WAIT_S,
     add_place_cells,
+    check_loaded_place_cells,
     integer,
     number,
     numbers,
@@ -121,6 +122,7 @@ def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser)
         except (OSError, ValueError) as e:
             parser.error(f"argument --load: {args.load}: {' '.join(str(e).split())}")
         meta = args.loaded["meta"]
+        check_loaded_place_cells(args, parser, meta["place_cells"])
         for opt, key in (("--arena", "arena"), ("--checkpoints", "checkpoints"),
                          ("--waits", "waits")):
             given = getattr(args, key, None)

@@ -25,6 +25,7 @@ Writes ``metrics.json`` (totals, failures per kind and per hour, the segments), 
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 
 import numpy as np
@@ -91,6 +92,9 @@ def run(args: argparse.Namespace) -> dict:
     t0 = time.perf_counter()
     state = ckpt.load(dict) if getattr(args, "resume", False) else None
     if state is None:
+        if getattr(args, "resume", False):
+            print(f"--resume: no checkpoint in {ckpt.folder}; starting afresh",
+                  file=sys.stderr)
         ckpt.clear()
         lesson = teach_patrol(args, int(args.seed), units=units)
         s, course = lesson.session, lesson.course
@@ -102,9 +106,12 @@ def run(args: argparse.Namespace) -> dict:
         ckpt.save(_checkpoint(meta, s, course, state))
     else:
         if state.get("meta") != meta:
+            was = state.get("meta") or {}
+            diff = "; ".join(f"{k}: {was.get(k)!r} there, {meta.get(k)!r} now"
+                             for k in sorted(set(was) | set(meta)) if was.get(k) != meta.get(k))
             raise SystemExit(f"--resume: the checkpoint in {ckpt.folder} was made with other "
-                             f"options ({state.get('meta')}); give the same options, or "
-                             "leave out --resume to start afresh")
+                             f"options ({diff}); give the same options, or leave out "
+                             "--resume to start afresh")
         s = Session(state["world"], state["agent"], Log(n_drives=len(args.checkpoints)),
                     obs=state["obs"])
         s.world.detach(s.teacher)

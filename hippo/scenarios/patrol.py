@@ -77,6 +77,22 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 check_args = check_course_args
 
 
+def _wait_summary(r: dict) -> str:
+    """One checkpoint's waits for the summary line: taught (the lesson's stillness), learned
+    (flagged when more than 5 % off the taught one), reproduced, or why there is none."""
+    taught, learned = r["taught_stop_s"], r["learned_wait_s"]
+    text = f"{r['checkpoint']}: " + (f"taught {taught:.1f} s" if taught else "not taught")
+    if learned is None:
+        return text + ", not learned"
+    text += f", learned {learned:.1f} s"
+    if taught and abs(learned / taught - 1.0) > 0.05:
+        text += f" ({100 * (learned / taught - 1.0):+.0f} % of the taught wait)"
+    if not r["passes"]:
+        return text + ", never passed on the patrol"
+    return text + ", reproduced " + (f"{r['mean_s']:.1f} ± {r['sd_s']:.2f} s"
+                                     if r["mean_s"] is not None else "none")
+
+
 def route_note(route: Route, kind: str = "shortest") -> str:
     """What the summary says about a route the patrol is known not to hold on: one that runs
     out and back (:attr:`Route.winding` 0) and is not a wall tour (``kind``, from
@@ -168,10 +184,7 @@ def run(args: argparse.Namespace) -> dict:
     from hippo.plots.agent import plot_patrol
 
     plot_patrol(out, arena, agent, arrays, rows, checkpoints)
-    waits = "; ".join(
-        f"{r['checkpoint']}: learned {r['learned_wait_s']:.1f} s, reproduced "
-        + (f"{r['mean_s']:.1f} ± {r['sd_s']:.2f} s" if r["mean_s"] is not None else "none")
-        for r in rows if r["learned_wait_s"] is not None)
+    waits = "; ".join(_wait_summary(r) for r in rows)
     shuttle = route_note(loop_route, lesson.route_kind)
     write_metrics(out, metrics, summary=(
         f"patrol ({args.arena}, {args.place_cells} place cells): stopped at "

@@ -36,6 +36,7 @@ from hippo.cli_args import (
     PLACES,
     UNITS,
     add_place_cells,
+    check_loaded_place_cells,
     integer,
     number,
     out_dir,
@@ -120,6 +121,7 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
         args.loaded = _load_robot(args.load)
     except (CorruptFileError, ValueError, TypeError) as e:
         parser.error(f"argument --load: {args.load}: {' '.join(str(e).split())}")
+    check_loaded_place_cells(args, parser, args.loaded["meta"]["place_cells"])
 
 
 #: what a saved place-preference robot holds, beside the agent, the world and the observation
@@ -221,9 +223,11 @@ def run(args: argparse.Namespace) -> dict:
                         rec["still_t"], rec["still_s"] = run[0], run[1] - run[0]
                 if rewarded:
                     return o.sound
-                # extinction: done when the robot moves on after a real wait in the zone
+                # extinction: done when the robot moves on after a real wait in the zone, or
+                # has not after the patience (it never gave up: no resume delay to report)
                 return rec.get("still_s", 0.0) >= 2.0 and (
-                    (o.moving and o.floor != 1) or o.t - rec["still_t"] > 60.0)
+                    (o.moving and o.floor != 1)
+                    or o.t - rec["still_t"] > extinction_patience(args.delay))
 
             obs = s.run(int(args.trial_timeout / dt), until=done)
             if "entered_t" in rec:
@@ -236,7 +240,10 @@ def run(args: argparse.Namespace) -> dict:
             elif rec.get("still_s", 0.0) >= 2.0:
                 # the longest stop in the zone ended when the robot moved again
                 rec["still_s"] = float(round(rec["still_s"] + dt, 6))
-                rec["resume_t"] = rec["still_t"] + rec["still_s"]
+                # still at the end (the patience or the trial's timeout ran out): never gave up
+                rec["gave_up"] = exp.still_since is None
+                if rec["gave_up"]:
+                    rec["resume_t"] = rec["still_t"] + rec["still_s"]
             else:
                 rec.pop("still_s", None)
             results.append(rec)
@@ -263,7 +270,9 @@ def run(args: argparse.Namespace) -> dict:
         "extinction_stops": int(sum("still_s" in r for r in ext)),
         "extinction_still_s": [r["still_s"] for r in ext if "still_s" in r],
         "extinction_resume_delays_s": [r["still_s"] - (learned_delay or args.delay)
-                                       for r in ext if "still_s" in r],
+                                       for r in ext if "still_s" in r and r["gave_up"]],
+        "extinction_never_gave_up": int(sum(not r.get("gave_up", True) for r in ext)),
+        "extinction_patience_s": extinction_patience(args.delay),
         "path_length_ratio": float(np.median(ratios)) if ratios else None,
         "path_length_ratios": ratios,
         "states": agent.layer.n_states, "transitions": len(agent.graph),
@@ -282,9 +291,18 @@ def run(args: argparse.Namespace) -> dict:
         f"for the sound; extinction: stopped in {metrics['extinction_stops']} of "
         f"{metrics['extinction_trials']} trials and moved on "
         + (f"{np.mean(resume):.1f} s after the learned delay" if resume else "(no stop)")
+        + (f", never in {metrics['extinction_never_gave_up']} (still after "
+           f"{metrics['extinction_patience_s']:g} s)" if metrics["extinction_never_gave_up"]
+           else "")
         + (f"; path {metrics['path_length_ratio']:.2f} x the shortest"
            if metrics["path_length_ratio"] is not None else "")))
     return metrics
+
+
+def extinction_patience(delay: float) -> float:
+    """Seconds an extinction trial waits for the robot, still in the zone, to move on: three
+    reward delays, at least 60 s. A robot still then has not given up (no resume delay)."""
+    return max(60.0, 3.0 * float(delay))
 
 
 def _learn(args: argparse.Namespace, arena, seed: int, explore_min: float, n_teach: int,

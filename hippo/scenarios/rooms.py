@@ -86,7 +86,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "two per region of the SFA slowness spectrum, without labels)")
     parser.add_argument("--leak", type=numbers((1, None), 0.0, 1.0, lo_open=True),
                         default=(0.05, 0.15),
-                        help="leak rates, one per half (default: SMC09's 0.05,0.15)")
+                        help="leak rates, one per group of neurons (split evenly; default: "
+                             "SMC09's halves 0.05,0.15)")
     parser.add_argument("--slow-pool", type=slow_pool, default=SLOW_POOL, metavar="TICKS",
                         help="time constant of a slow pool, a leaky running mean of the "
                              f"reservoir state appended to the SFA input (default {SLOW_POOL:g}, "
@@ -115,6 +116,9 @@ def _units(text: str) -> int | str:
 
 def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
     """Checks across arguments, before any work."""
+    if args.neurons < len(args.leak):
+        parser.error(f"argument --neurons: {args.neurons} neuron(s) cannot hold the "
+                     f"{len(args.leak)} groups of --leak (one group of neurons per leak rate)")
     if args.select and args.units == "auto":
         parser.error("argument --units: 'auto' and --select each choose the unit count "
                      "without labels; leave one out")
@@ -164,6 +168,13 @@ def _kidnapped_run(arena, rec: Recording, n_train: int, test_len: int, seed: int
         arena, test_len, seed=seed + 7919, rho=rho, sensors="ir8", kidnaps=kid,
         start_pose=pose, progress=False), ticks=test_len)
     return run, [k for k, _ in kid]
+
+
+def _finite_mean(values: Any) -> float:
+    """Mean of the finite values (NaN, silently, when there are none)."""
+    a = np.asarray(values, float)
+    ok = np.isfinite(a)
+    return float(a[ok].mean()) if ok.any() else float("nan")
 
 
 def _room_cells_mean(Y: np.ndarray, lab: np.ndarray, n_train: int, n: int) -> float:
@@ -241,9 +252,10 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
         "room_occupancy": [float(np.mean(lab == r)) for r in range(n)],
         "room_cell_balanced_accuracy": bacc,
         "room_cell_units": [-1 if c is None else c.unit for c in cells],
-        "room_cell_mean": float(np.nanmean(bacc)),
+        "room_cell_mean": _finite_mean(bacc),
+        "rooms_scored": int(np.isfinite(bacc).sum()),
         # a test part inside one room has no balanced accuracy (recall of one room alone)
-        "decoder_balanced_accuracy": (float(np.nanmean(recall))
+        "decoder_balanced_accuracy": (_finite_mean(recall)
                                       if np.isfinite(recall).sum() >= 2 else float("nan")),
     }
     if args.ceiling:
@@ -252,9 +264,9 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
         per = [M.balanced_accuracy((ceil.predicted == r)[in_room], (lab == r)[in_room])
                for r in range(n)]
         out.update(ceiling_room_balanced_accuracy=per,
-                   ceiling_room_mean=float(np.nanmean(per)),
+                   ceiling_room_mean=_finite_mean(per),
                    ceiling_decoder_balanced_accuracy=ceil.balanced_accuracy,
-                   gap_to_ceiling=float(np.nanmean(per) - np.nanmean(bacc)))
+                   gap_to_ceiling=_finite_mean(per) - _finite_mean(bacc))
     # kidnapping: an unseen test run continuing from the end of training
     test_len = ticks - n_train
     run, events = _kidnapped_run(arena, rec, n_train, test_len, seed, args.rho, rooms,
@@ -316,10 +328,15 @@ def run(args: argparse.Namespace) -> dict:
         metrics["leak"] = "chosen per flat by --select (see selection.chosen)"
     if args.figures:
         _figure(out, rows, args.n_rooms, seeds)
+    scored, total = sum(r["rooms_scored"] for r in rows), args.n_rooms * len(rows)
     write_metrics(out, metrics, summary=(
         f"rooms: {args.n_rooms} per flat, {len(seeds)} flats: room cell "
         f"{metrics['room_cell_mean']:.3f}, decoder {metrics['decoder_balanced_accuracy']:.3f}"
-        + (f", ceiling {metrics['ceiling_room_mean']:.3f}" if args.ceiling else "")))
+        + (f", ceiling {metrics['ceiling_room_mean']:.3f}" if args.ceiling else "")
+        + (f" ({scored} of {total} rooms scored: a room that the training part never entered "
+           "(or entered alone), or the test part never entered, has no room cell; a test part "
+           "inside one room has no decoder score; record longer with --ticks-per-room)"
+           if scored < total or not np.isfinite(metrics["decoder_balanced_accuracy"]) else "")))
     return metrics
 
 

@@ -129,8 +129,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--sfa-cutoff", type=cli_sfa_cutoff, default="1e-8",
                         help="relative whitening cutoff in (0, 1), or 'auto'")
     parser.add_argument("--leak", type=parse_leak, default=ROOM_LEAK,
-                        help="leak rates of the room-cell reservoir, one per half "
-                             "(default 0.08,0.15; SMC09's: 0.05,0.15)")
+                        help="leak rates of the room-cell reservoir, one per group of neurons "
+                             "(split evenly; default 0.08,0.15; SMC09's halves: 0.05,0.15)")
     parser.add_argument("--slow-pool", type=slow_pool, default=0.0, metavar="TICKS",
                         help="time constant of a slow pool, a leaky running mean of the "
                              "reservoir state appended to the SFA input (default 0: off)")
@@ -154,6 +154,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
     """Checks across arguments, before any work."""
+    if args.neurons < len(args.leak):
+        parser.error(f"argument --neurons: {args.neurons} neuron(s) cannot hold the "
+                     f"{len(args.leak)} groups of --leak (one group of neurons per leak rate)")
     if args.n_ica > args.n_sfa:
         parser.error(f"argument --n-ica: {args.n_ica} exceeds --n-sfa {args.n_sfa} "
                      "(ICA rotates the SFA outputs)")

@@ -8,6 +8,7 @@ that the start pose is free. The arenas of the experiments are in :mod:`hippo.si
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -22,8 +23,8 @@ class ArenaBuilder:
     """Fluent builder for :class:`Arena` (every method returns the builder)."""
 
     def __init__(self, name: str, width: float, height: float) -> None:
-        if width <= 0 or height <= 0:
-            raise ValueError(f"arena size must be positive, got {width} x {height}")
+        if not (math.isfinite(width) and math.isfinite(height) and width > 0 and height > 0):
+            raise ValueError(f"arena size must be positive and finite, got {width} x {height}")
         self.name, self.width, self.height = name, float(width), float(height)
         self._walls: list[tuple[Point, Point]] = []
         self._zones: list[Zone] = []
@@ -59,26 +60,53 @@ class ArenaBuilder:
         """The four walls of the bounding rectangle."""
         return self.box((0.0, 0.0, self.width, self.height))
 
+    def _rect(self, what: str, rect: Rect) -> tuple[float, float, float, float]:
+        """``(x0, y0, x1, y1)`` checked: finite, x0 < x1, y0 < y1, inside the arena."""
+        r = tuple(float(v) for v in check_finite(what, rect))
+        if len(r) != 4:
+            raise ValueError(f"{what} must be (x0, y0, x1, y1), got {rect!r}")
+        x0, y0, x1, y1 = r
+        if not (x0 < x1 and y0 < y1):
+            raise ValueError(f"{what} {r} must have x0 < x1 and y0 < y1")
+        if x0 < 0 or y0 < 0 or x1 > self.width or y1 > self.height:
+            raise ValueError(f"{what} {r} lies outside the {self.width:g} x {self.height:g} "
+                             "arena")
+        return r
+
+    def _point(self, what: str, x: float, y: float) -> tuple[float, float]:
+        p = tuple(float(v) for v in check_finite(what, (x, y)))
+        if not (0 <= p[0] <= self.width and 0 <= p[1] <= self.height):
+            raise ValueError(f"{what} {p} lies outside the {self.width:g} x {self.height:g} "
+                             "arena")
+        return p  # type: ignore[return-value]
+
     def zone(self, name: str, rect: Rect, colour: int = 1) -> ArenaBuilder:
         """A coloured floor rectangle; ``colour`` ≥ 1 is what the floor sensor reports."""
         if colour < 1:
             raise ValueError("zone colour ids start at 1 (0 is plain floor)")
-        self._zones.append(Zone(name, tuple(map(float, rect)), int(colour)))  # type: ignore
+        self._zones.append(Zone(name, self._rect(f"zone {name!r}", rect), int(colour)))
         return self
 
     def region(self, name: str, *rects: Rect) -> ArenaBuilder:
         """A named region made of one or more rectangles (for analysis only)."""
-        self._regions.append(Region(name, tuple(tuple(map(float, r)) for r in rects)))  # type: ignore
+        if not rects:
+            raise ValueError(f"region {name!r} needs at least one rectangle")
+        self._regions.append(Region(name, tuple(self._rect(f"region {name!r}", r)
+                                                for r in rects)))
         return self
 
     def location(self, x: float, y: float) -> ArenaBuilder:
         """One labelled reference location (for analysis only)."""
-        self._locations.append((float(x), float(y)))
+        self._locations.append(self._point("location", x, y))
         return self
 
     def grid_locations(self, nx: int, ny: int, rect: Rect | None = None) -> ArenaBuilder:
         """An ``nx`` × ``ny`` grid of reference locations over ``rect`` (cell centres)."""
-        x0, y0, x1, y1 = rect if rect is not None else (0, 0, self.width, self.height)
+        if int(nx) != nx or int(ny) != ny or nx < 1 or ny < 1:
+            raise ValueError(f"a grid of locations needs nx, ny >= 1, got {nx} x {ny}")
+        nx, ny = int(nx), int(ny)
+        x0, y0, x1, y1 = (self._rect("grid rectangle", rect) if rect is not None
+                          else (0.0, 0.0, self.width, self.height))
         for j in range(ny):
             for i in range(nx):
                 self.location(x0 + (i + 0.5) * (x1 - x0) / nx, y0 + (j + 0.5) * (y1 - y0) / ny)

@@ -22,8 +22,8 @@ from hippo.tasks.explore import arena_tour
 from hippo.tasks.patrol_report import PASS_RADIUS
 from hippo.tasks.routes import Route
 
-__all__ = ["ARENA_CHECKPOINTS", "HIREL_WAITS", "ROUTE_KINDS", "TOUR_REACH", "check_patrol",
-           "choose_route", "patrol_route", "random_patrol"]
+__all__ = ["ARENA_CHECKPOINTS", "HIREL_WAITS", "MIN_WAIT_S", "ROUTE_KINDS", "TOUR_REACH",
+           "check_patrol", "choose_route", "patrol_route", "random_patrol"]
 
 #: the arenas a patrol runs in, with their default checkpoints (cm): patrol-course's are its
 #: landmarks checkpoint-1..3 on the corridor loop; the others' were placed in distinct parts
@@ -37,6 +37,10 @@ ARENA_CHECKPOINTS: dict[str, list[tuple[float, float]]] = {
 }
 #: HIREL's three checkpoint waits (s); with n checkpoints the first n are the defaults
 HIREL_WAITS = [24.1, 19.1, 11.6, 16.0]
+#: the shortest checkpoint wait (s) a patrol takes: with ground truth a 1-s wait was learned as
+#: 0.8 s and never reproduced, 0.5 s never taught (patrol-course, seed 0, --quick); 1.2 s
+#: worked there, and 2 s leaves a margin for learned place cells
+MIN_WAIT_S = 2.0
 #: how a patrol route is built (:func:`patrol_route`)
 ROUTE_KINDS = ("auto", "shortest", "tour")
 #: a wall tour is a patrol's route only if it passes this close to every checkpoint (chosen
@@ -110,6 +114,10 @@ def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
     if len(waits) != len(checkpoints):
         raise ValueError(f"got {len(waits)} waits for {len(checkpoints)} checkpoints; give "
                          "one wait per checkpoint")
+    short = [float(w) for w in waits if not float(w) >= MIN_WAIT_S]
+    if short:
+        raise ValueError(f"wait(s) {', '.join(f'{w:g}' for w in short)} s: a checkpoint's wait "
+                         f"must be at least {MIN_WAIT_S:g} s (a shorter stop is not reproduced)")
     xs, ys, home = _home_floor(arena)
     for x, y in checkpoints:
         if not arena.is_free(x, y, 6.0):

@@ -225,7 +225,11 @@ def lead_from(arena: Any, start: Sequence[float], waypoints: Sequence[Sequence[f
     x, y = check_real("start x", start[0]), check_real("start y", start[1])
     if not (0.0 <= x <= arena.width and 0.0 <= y <= arena.height):
         raise ValueError(f"start ({x:g}, {y:g}) lies outside arena {arena.name!r}")
-    wp = [(float(a), float(b)) for a, b in check_finite("waypoints", waypoints).reshape(-1, 2)]
+    arr = check_finite("waypoints", waypoints)
+    if arr.size and (arr.ndim != 2 or arr.shape[1] != 2):
+        raise ValueError(f"waypoints must be an (N, 2) array of (x, y) in cm, got shape "
+                         f"{arr.shape}")
+    wp = [(float(a), float(b)) for a, b in arr.reshape(-1, 2)]
     if not wp:
         return wp
     x0, y0 = wp[0]

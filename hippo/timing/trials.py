@@ -89,6 +89,8 @@ def run_trial(chain: TimingChain | SpectralTiming, *args: Any, dt: float = 0.2,
         check_positive("delay", delay)
     if t_max is None:
         t_max = 2.0 * delay + 5.0 if delay is not None else 60.0
+    t_max = check_positive("t_max", t_max)
+    check_positive("after", after, allow_zero=True)
     cells = chain.cells
     if chain.state == a:
         raise ValueError(f"state {a} is already the winner: a trial starts by entering it "

@@ -67,8 +67,8 @@ def test_a_saved_lesson_patrols_bit_for_bit_like_the_run_that_saved_it(tmp_path)
         if k not in ("wall_s", "realtime_factor", "loaded_from"):
             assert loaded[k] == whole[k], k
     # a course that contradicts the saved one, or --save with --load, is one clear error
-    for bad in (["--waits", "1,2,3"], ["--arena", "maze"], ["--save", str(tmp_path / "c")],
-                ["--heading-sectors", "2"]):
+    for bad in (["--waits", "3,4,5"], ["--arena", "maze"], ["--save", str(tmp_path / "c")],
+                ["--heading-sectors", "2"], ["--place-cells", "ground-truth"]):
         with pytest.raises(SystemExit):
             run_scenario("patrol", ["--quick", "--load", str(tmp_path / "robot"), *bad,
                                     "--out", str(tmp_path / "d")])
@@ -101,3 +101,21 @@ def test_learned_cells_re_anchor_after_the_kidnap_when_asked(tmp_path):
     assert k_on["relocalised_after_s"] is not None
     assert k_on["relocalised_after_s"] < k_off["relocalised_after_s"]
     assert k_on["passed_the_low_drive"]
+
+
+def test_the_summary_says_a_wait_learned_off_the_taught_one_and_a_checkpoint_never_passed():
+    # patrol-course, checkpoints 12,100;145,20;145,100;60,10, seed 333, ground truth, --quick:
+    # "stopped at 9 of 9" hid a wait taught 24.0 s and learned 15.6 s, and a checkpoint the
+    # patrol never passed
+    from hippo.scenarios.patrol import _wait_summary
+
+    row = {"checkpoint": "checkpoint-1", "taught_stop_s": 24.0, "learned_wait_s": 15.6,
+           "passes": 3, "mean_s": 15.6, "sd_s": 0.0}
+    assert _wait_summary(row) == ("checkpoint-1: taught 24.0 s, learned 15.6 s (-35 % of the "
+                                  "taught wait), reproduced 15.6 ± 0.00 s")
+    assert _wait_summary({**row, "learned_wait_s": 24.5, "mean_s": 24.4}) == (
+        "checkpoint-1: taught 24.0 s, learned 24.5 s, reproduced 24.4 ± 0.00 s")
+    assert _wait_summary({**row, "passes": 0}).endswith("never passed on the patrol")
+    assert _wait_summary({**row, "learned_wait_s": None}) == (
+        "checkpoint-1: taught 24.0 s, not learned")
+    assert _wait_summary({**row, "taught_stop_s": None}).startswith("checkpoint-1: not taught")

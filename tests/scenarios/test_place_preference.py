@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from hippo.cli import run_scenario
+from hippo.scenarios.place_preference import extinction_patience
 
 
 @pytest.fixture(scope="module")
@@ -43,6 +44,11 @@ def test_a_saved_robot_runs_the_same_trials(learned, tmp_path):
     with pytest.raises(SystemExit) as e:
         run_scenario("place-preference", ["--load", str(other), "--out", str(tmp_path / "o")])
     assert e.value.code == 2
+    # a learned robot does not run on ground truth because --place-cells says so: refused
+    with pytest.raises(SystemExit) as e:
+        run_scenario("place-preference", ["--load", str(robot), "--place-cells",
+                                          "ground-truth", "--out", str(tmp_path / "g")])
+    assert e.value.code == 2 and not (tmp_path / "g").exists()
     (robot / "state.json").write_text("{}")  # damaged: its checksum no longer matches
     with pytest.raises(SystemExit):
         run_scenario("place-preference", ["--load", str(robot), "--out", str(tmp_path / "p")])
@@ -89,6 +95,20 @@ def test_an_untuned_delay_is_learned(tmp_path):
     assert m["learned_delay_s"] == pytest.approx(4.3, rel=0.05)
     # the sound comes on the first tick after 4.3 s of stillness, heard one tick later
     assert all(4.3 <= w <= 4.3 + 0.45 for w in m["waits_s"])
+
+
+def test_a_long_delay_is_waited_out_and_given_up_after(tmp_path):
+    # extinction waited at most 60 s for the robot to move on: with --delay 100 every cut-off
+    # counted as a resume 40 s *before* the learned delay (found by trying unlisted delays)
+    m = run_scenario("place-preference", ["--quick", "--place-cells", "ground-truth",
+                                          "--delay", "100", "--seed", "3", "--out",
+                                          str(tmp_path)])
+    assert m["learned_delay_s"] == pytest.approx(100.0, rel=0.03)
+    assert m["extinction_patience_s"] == 300.0
+    assert m["extinction_never_gave_up"] == 0 and m["extinction_resume_delays_s"]
+    # Weber: the give-up comes a few per cent of the delay after it (measured 5.6-6.0 s)
+    assert all(0.0 < d <= 10.0 for d in m["extinction_resume_delays_s"])
+    assert extinction_patience(7.0) == 60.0 and extinction_patience(30.0) == 90.0
 
 
 def test_bad_delay_is_refused(tmp_path, capsys):

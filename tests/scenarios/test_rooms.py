@@ -1,6 +1,7 @@
 """`hippo run rooms --quick`: one generated flat end to end, values a broken pipeline misses."""
 
 import json
+import warnings
 
 import numpy as np
 import pytest
@@ -33,6 +34,18 @@ def test_rooms_units_auto(tmp_path):
     assert 2 <= flat["regions_from_spectrum"] <= 8
     assert m["units"] == [flat["units"]] == [2 * flat["regions_from_spectrum"]]
     assert 0.5 <= m["room_cell_mean"] <= 1.0
+
+
+def test_rooms_a_flat_whose_training_part_stays_in_one_room_says_why_it_has_no_score(
+        tmp_path, capsys):
+    # quick, 2 rooms, seed 0: the short exploration stays in one room (occupancy 0.86 / 0.09);
+    # it printed "room cell nan, decoder nan" and numpy's "Mean of empty slice" warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        m = run_scenario("rooms", ["--quick", "--n-rooms", "2", "--no-figures",
+                                   "--out", str(tmp_path)])
+    assert m["flats"][0]["rooms_scored"] == 0 and np.isnan(m["room_cell_mean"])
+    assert "0 of 2 rooms scored" in capsys.readouterr().err
 
 
 def test_rooms_arguments():

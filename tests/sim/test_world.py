@@ -283,6 +283,20 @@ def test_builder_validation():
         ArenaBuilder("a", 0, 10)
     with pytest.raises(ValueError, match="not free"):
         ArenaBuilder("a", 50, 50).outer_walls().start(1, 1).build()
+    # found by trying inputs nobody listed: each was accepted and failed later, or never
+    with pytest.raises(ValueError, match="positive and finite"):
+        ArenaBuilder("a", float("nan"), 60)
+    b = ArenaBuilder("a", 50, 40)
+    with pytest.raises(ValueError, match="outside the 50 x 40 arena"):
+        b.region("far", (40, 0, 60, 10))
+    with pytest.raises(ValueError, match="x0 < x1"):
+        b.zone("goal", (20, 0, 10, 10))
+    with pytest.raises(ValueError, match="nx, ny >= 1"):
+        b.grid_locations(0, 0)
+    with pytest.raises(ValueError, match="location"):
+        b.location(float("nan"), 3)
+    b.region("left", (0, 0, 25, 40)).grid_locations(2, 2, (0, 0, 50, 40))
+    assert b._locations == [(12.5, 10.0), (37.5, 10.0), (12.5, 30.0), (37.5, 30.0)]
 
 
 def test_arenas_have_their_labelled_locations():

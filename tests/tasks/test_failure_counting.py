@@ -10,6 +10,7 @@ from hippo.sim import arenas
 from hippo.tasks import Route
 from hippo.tasks.deployment import DeploymentParams, StuckWatch, tally_failures
 from hippo.tasks.patrol import ARENA_CHECKPOINTS, check_patrol, patrol_route
+from hippo.tasks.patrol_sets import MIN_WAIT_S
 from hippo.types import Mode
 
 SQUARE = Route([(0, 0), (100, 0), (100, 100), (0, 100)])
@@ -100,13 +101,17 @@ def test_deployment_params_refuse_impossible_values():
 
 
 def test_check_patrol_names_the_problem():
-    route = check_patrol("patrol-course", ARENA_CHECKPOINTS["patrol-course"], [1.0, 2.0, 3.0])
+    route = check_patrol("patrol-course", ARENA_CHECKPOINTS["patrol-course"], [2.0, 3.0, 4.0])
     assert route.length == pytest.approx(patrol_route(
         "patrol-course", ARENA_CHECKPOINTS["patrol-course"]).length)
     with pytest.raises(ValueError, match="3 waits for 2 checkpoints"):
-        check_patrol("two-rooms", ARENA_CHECKPOINTS["two-rooms"][:2], [1.0, 2.0, 3.0])
+        check_patrol("two-rooms", ARENA_CHECKPOINTS["two-rooms"][:2], [2.0, 3.0, 4.0])
     with pytest.raises(ValueError, match="not free floor"):
-        check_patrol("two-rooms", [(0.5, 0.5), (90.0, 20.0)], [1.0, 2.0])
+        check_patrol("two-rooms", [(0.5, 0.5), (90.0, 20.0)], [2.0, 3.0])
     with pytest.raises(ValueError, match="apart along the route"):
-        check_patrol("two-rooms", [(90.0, 20.0), (100.0, 22.0)], [1.0, 2.0])
+        check_patrol("two-rooms", [(90.0, 20.0), (100.0, 22.0)], [2.0, 3.0])
+    # a 1-s wait was learned as 0.8 s and never reproduced (ground truth); NaN is no wait
+    for short in (1.0, float("nan")):
+        with pytest.raises(ValueError, match=f"must be at least {MIN_WAIT_S:g} s"):
+            check_patrol("patrol-course", ARENA_CHECKPOINTS["patrol-course"], [short, 3.0, 4.0])
     assert arenas.get("two-rooms").is_free(90.0, 20.0, 6.0)

@@ -209,6 +209,8 @@ def test_a_leash_to_a_waypoint_behind_a_wall_goes_round_it():
     assert lead_from(two, (20.0, 20.0), [(40.0, 30.0), (60.0, 30.0)]) == [(40.0, 30.0),
                                                                           (60.0, 30.0)]
     assert lead_from(two, (20.0, 20.0), []) == []
+    with pytest.raises(ValueError, match=r"waypoints must be an \(N, 2\) array"):
+        lead_from(two, (20.0, 20.0), [(40.0, 30.0, 1.0)])
 
 
 def test_a_lap_counter_says_the_robot_reached_a_point_only_at_or_past_it():

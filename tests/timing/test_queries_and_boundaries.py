@@ -137,6 +137,12 @@ def test_run_trial_names_a_bad_delay():
 
     with pytest.raises(ValueError, match="delay"):
         run_trial(TimingChain(), 0, 1, -1.0, dt=DT, jitter=0.0)
+    # a NaN or negative t_max ended the trial at once, silently (end None)
+    for bad in (float("nan"), -1.0, 0.0):
+        with pytest.raises(ValueError, match="t_max"):
+            run_trial(TimingChain(), 0, 1, None, dt=DT, jitter=0.0, self_end=True, t_max=bad)
+    with pytest.raises(ValueError, match="after"):
+        run_trial(TimingChain(), 0, 1, 2.0, dt=DT, jitter=0.0, after=-1.0)
 
 
 def test_a_chain_wires_its_parts_with_the_given_params():
