@@ -78,15 +78,17 @@ check_args = check_course_args
 
 
 def _wait_summary(r: dict) -> str:
-    """One checkpoint's waits for the summary line: taught (the lesson's stillness), learned
-    (flagged when more than 5 % off the taught one), reproduced, or why there is none."""
-    taught, learned = r["taught_stop_s"], r["learned_wait_s"]
-    text = f"{r['checkpoint']}: " + (f"taught {taught:.1f} s" if taught else "not taught")
+    """One checkpoint's waits for the summary line: the wait asked for (``--waits``), learned
+    (flagged when more than 5 % off it), reproduced, or why there is none."""
+    asked, learned = r["taught_block_s"], r["learned_wait_s"]
+    text = f"{r['checkpoint']}: wait {asked:g} s"
+    if r["taught_stop_s"] is None:
+        return text + ", never taught"
     if learned is None:
         return text + ", not learned"
     text += f", learned {learned:.1f} s"
-    if taught and abs(learned / taught - 1.0) > 0.05:
-        text += f" ({100 * (learned / taught - 1.0):+.0f} % of the taught wait)"
+    if abs(learned / asked - 1.0) > 0.05:
+        text += f" ({100 * (learned / asked - 1.0):+.0f} %)"
     if not r["passes"]:
         return text + ", never passed on the patrol"
     return text + ", reproduced " + (f"{r['mean_s']:.1f} ± {r['sd_s']:.2f} s"
