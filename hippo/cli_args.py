@@ -211,8 +211,8 @@ def points(count: tuple[int, int], unit: str = "") -> Callable[[str], list[tuple
         out = []
         parts = _items(text, ";")
         if parts is None:
-            raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed} (an empty one "
-                                             "between two ';')")
+            why = "no points" if not text.strip() else "an empty point between two ';'"
+            raise argparse.ArgumentTypeError(f"got {text!r} ({why}); needs {allowed}")
         for part in parts:
             xy = part.split(",")
             try:

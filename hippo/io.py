@@ -117,7 +117,10 @@ def load_npz(path: str | os.PathLike, required: Iterable[str] = ()) -> dict[str,
                 raise ValueError("a single .npy array, not an .npz archive")
             out = {k: data[k] for k in data.files}
     except Exception as exc:  # zip, zlib, header, dtype, size: any failure is a corrupt file
-        raise CorruptFileError(f"{path} is not a readable .npz file ({exc!r:.300})") from exc
+        why = repr(exc)
+        if "pickle" in why:  # numpy's advice to allow pickles: hippo never loads one
+            why = "neither a .npz archive nor a .npy array (numpy took it for pickled data)"
+        raise CorruptFileError(f"{path} is not a readable .npz file ({why:.300})") from exc
     missing = [k for k in required if k not in out]
     if missing:
         raise CorruptFileError(f"{path} lacks required array(s): {', '.join(missing)}")

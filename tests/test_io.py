@@ -99,6 +99,11 @@ def test_npz_refuses_objects_and_loads_without_pickle(tmp_path):
     (tmp_path / "bad.npz").write_bytes(b"PK\x03\x04garbage")
     with pytest.raises(io.CorruptFileError):
         io.load_npz(tmp_path / "bad.npz")
+    # random bytes: numpy takes them for a pickle and advises allow_pickle; hippo never does
+    (tmp_path / "noise.npz").write_bytes(np.random.default_rng(0).bytes(3000))
+    with pytest.raises(io.CorruptFileError, match="took it for pickled data") as e:
+        io.load_npz(tmp_path / "noise.npz")
+    assert "allow_pickle" not in str(e.value)
 
 
 def test_json_is_strict_a_nan_or_infinity_is_written_as_null(tmp_path):

@@ -41,6 +41,12 @@ HIREL_WAITS = [24.1, 19.1, 11.6, 16.0]
 #: 0.8 s and never reproduced, 0.5 s never taught (patrol-course, seed 0, --quick); 1.2 s
 #: worked there, and 2 s leaves a margin for learned place cells
 MIN_WAIT_S = 2.0
+#: a shortest route that runs back over itself for longer than this (cm,
+#: :attr:`Route.doubled_length`) gives way to a wall tour through every checkpoint: on the
+#: doubled stretch the pass count cannot tell which way the robot goes (patrol-course,
+#: checkpoints 12,100;145,20;145,100;60,10: the robot stopped at checkpoint 3 on every lap,
+#: and no pass of it was counted)
+DOUBLED_MAX = 30.0
 #: how a patrol route is built (:func:`patrol_route`)
 ROUTE_KINDS = ("auto", "shortest", "tour")
 #: a wall tour is a patrol's route only if it passes this close to every checkpoint (chosen
@@ -63,7 +69,9 @@ def choose_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
     can); ``"tour"``, a wall follower's loop (:func:`hippo.tasks.wall_tour`, right wall first)
     within ``TOUR_REACH`` cm of every checkpoint; ``"auto"``: the shortest paths if they make a
     loop (:attr:`Route.winding` not 0) that one of the arena's two wall tours runs the same way
-    round, else a tour that goes round something and passes every checkpoint, else the shortest.
+    round and runs back over itself for at most ``DOUBLED_MAX`` cm (checkpoints out of the
+    loop's order), else a tour that goes round something and passes every checkpoint, else the
+    shortest.
     The robot moves along a wall (:func:`hippo.tasks.wall_side`), and in ``goal-arena`` no wall
     goes round clockwise (the right wall follower turns back at the south nook), so a clockwise
     route was run backwards (tuning seeds 0-15, learned cells: 65 of 149 passes with a stop,
@@ -81,7 +89,8 @@ def choose_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
             return "shortest", route
     tours = [t for t in (arena_tour(arena_name, side) for side in (-1, 1)) if t is not None]
     if route is not None and route.winding != 0 and any(t.winding == route.winding
-                                                        for t in tours):
+                                                        for t in tours) \
+            and route.doubled_length <= DOUBLED_MAX:
         return "shortest", route
     for tour in tours:
         if all(tour.distance(*c) <= TOUR_REACH for c in checkpoints) and \

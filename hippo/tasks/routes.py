@@ -204,6 +204,27 @@ class Route:
             return 0
         return 1 if a > 0 else -1
 
+    @property
+    def doubled_length(self) -> float:
+        """cm of the route that run back over another part of it the other way (within 12 cm,
+        headings more than 120° apart, at least 60 cm away along the route): a loop that goes
+        out along a corridor and back again before going on. Progress along such a stretch is
+        ambiguous (the nearest point of the route may be either way), so a checkpoint on it can
+        go unseen by a pass count (patrol-course, checkpoints out of the loop's order)."""
+        if self.length <= 0:
+            return 0.0
+        step = 3.0
+        s = np.arange(0.0, self.length, step)
+        p = self._points_at(s)
+        k = np.clip(np.searchsorted(self._s0, s, side="right") - 1, 0, len(self._s0) - 1)
+        u = self._d[k] / np.maximum(self._len[k], 1e-12)[:, None]
+        near = np.hypot(*(p[:, None, :] - p[None, :, :]).transpose(2, 0, 1)) < 12.0
+        ds = np.abs(s[:, None] - s[None, :])
+        if self.closed:
+            ds = np.minimum(ds, self.length - ds)
+        back = (u @ u.T) < -0.5
+        return float(step * np.count_nonzero(np.any(near & back & (ds > 60.0), axis=1)))
+
     def loop_from(self, pose: Sequence[float]) -> list[tuple[float, float]]:
         """One whole loop from the waypoint nearest ``pose`` (or the next one, if that one is
         behind the robot's heading) back to it."""

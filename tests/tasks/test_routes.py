@@ -267,6 +267,31 @@ def test_winding_tells_a_loop_round_from_a_shuttle():
     assert Route(arenas.loop_waypoints()).winding == 1
 
 
+def test_doubled_length_is_the_stretch_a_loop_runs_back_over():
+    assert Route(SQUARE).doubled_length == 0.0
+    assert Route(arenas.loop_waypoints()).doubled_length == 0.0
+    # up the east side to 150, back down to 50, up again: 100 cm run three times, less the
+    # hairpins (within 60 cm along the route a point is its own neighbour, not a return)
+    spur = Route([(0, 0), (200, 0), (200, 150), (200, 50), (200, 200), (0, 200)])
+    assert 200.0 <= spur.doubled_length <= 300.0
+    # a closed shuttle of 2 x 200 cm: all but the 30 cm next to each turn, each way
+    assert Route([(0, 0), (200, 0)]).doubled_length == pytest.approx(280.0, abs=21.0)
+
+
+def test_a_shortest_route_that_runs_back_over_itself_gives_way_to_the_wall_tour():
+    # found by trying checkpoints out of the loop's order on patrol-course (seed 333): the
+    # shortest paths 1 -> 2 -> 3 -> 4 run the east corridor three times; the robot stopped at
+    # checkpoint 3 on every lap and the pass count, by progress along the route, saw none
+    from hippo.tasks.patrol_sets import DOUBLED_MAX, choose_route
+
+    cps = [(12.0, 100.0), (145.0, 20.0), (145.0, 100.0), (60.0, 10.0)]
+    assert Route.through(arenas.get("patrol-course"), cps, clearance=8.0).doubled_length > \
+        DOUBLED_MAX
+    kind, route = choose_route("patrol-course", cps)
+    assert kind == "tour" and route.doubled_length == 0.0
+    assert all(route.distance(*c) <= 30.0 for c in cps)
+
+
 def test_distance_to_a_route_is_to_its_nearest_point():
     r = Route(SQUARE)
     assert r.distance(50.0, -7.0) == pytest.approx(7.0)
