@@ -289,14 +289,20 @@ def run(args: argparse.Namespace) -> dict:
         f"place preference ({place_cells} place cells): {metrics['rewarded_successes']} "
         f"of {metrics['rewarded_trials']} rewarded trials reached the goal, stopped and waited "
         f"for the sound; extinction: stopped in {metrics['extinction_stops']} of "
-        f"{metrics['extinction_trials']} trials and moved on "
-        + (f"{np.mean(resume):.1f} s after the learned delay" if resume else "(no stop)")
-        + (f", never in {metrics['extinction_never_gave_up']} (still after "
-           f"{metrics['extinction_patience_s']:g} s)" if metrics["extinction_never_gave_up"]
-           else "")
+        f"{metrics['extinction_trials']} trials"
+        + _gave_up_summary(resume, metrics["extinction_never_gave_up"],
+                           metrics["extinction_patience_s"])
         + (f"; path {metrics['path_length_ratio']:.2f} x the shortest"
            if metrics["path_length_ratio"] is not None else "")))
     return metrics
+
+
+def _gave_up_summary(resume: list[float], never: int, patience: float) -> str:
+    """How the extinction stops ended, for the summary line."""
+    parts = [f"moved on {np.mean(resume):.1f} s after the learned delay"] if resume else []
+    if never:
+        parts.append(f"never moved on in {never} (still after {patience:g} s)")
+    return " and " + "; ".join(parts) if parts else " (no stop)"
 
 
 def extinction_patience(delay: float) -> float:

@@ -109,6 +109,10 @@ def test_a_long_delay_is_waited_out_and_given_up_after(tmp_path):
     # Weber: the give-up comes a few per cent of the delay after it (measured 5.6-6.0 s)
     assert all(0.0 < d <= 10.0 for d in m["extinction_resume_delays_s"])
     assert extinction_patience(7.0) == 60.0 and extinction_patience(30.0) == 90.0
+    from hippo.scenarios.place_preference import _gave_up_summary
+
+    assert _gave_up_summary([1.2, 1.4], 0, 60.0) == " and moved on 1.3 s after the learned delay"
+    assert _gave_up_summary([], 2, 300.0) == " and never moved on in 2 (still after 300 s)"
 
 
 def test_bad_delay_is_refused(tmp_path, capsys):
