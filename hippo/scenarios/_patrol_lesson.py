@@ -72,7 +72,8 @@ def add_course_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the leash route: the arena's shortest paths through the "
                              "checkpoints, the loop the exploring wall follower runs round "
                              "the arena (tour), or auto: the shortest paths where they make a "
-                             "loop, else the tour where it passes every checkpoint")
+                             "loop a wall tour runs the same way round without running back "
+                             "over themselves, else the tour where it passes every checkpoint")
     add_place_cells(parser)
     parser.add_argument("--explore-min", type=number(*EXPLORE_MIN), default=30.0,
                         help="exploration, simulated minutes")
