@@ -9,6 +9,10 @@ delay ends the wait.
 
     python scenarios/patrol_square.py --out out/patrol-square [--seed 0] [--quick]
 
+These are the building blocks; ``hippo.tasks.teach_patrol`` is the whole recipe of ``hippo run
+patrol`` in one call (the route, the wall side, direction-split place states, a leash for a
+robot that went astray: ``scenarios/patrol_new_arena.py``).
+
 Writes ``metrics.json`` (the waits reproduced at each checkpoint during the patrol),
 ``run.npz`` and ``map.graphml``.
 """

@@ -6,12 +6,11 @@ robot, ``--load DIR`` starts from one instead of teaching it again."""
 from __future__ import annotations
 
 import argparse
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from hippo._checks import check_choice
-from hippo.agent import Agent, AgentParams
+from hippo.agent import Agent
 from hippo.cli_args import (
     EXPLORE_MIN,
     MAX_SEED,
@@ -28,7 +27,6 @@ from hippo.cli_args import (
     points,
     snapshot_dir,
 )
-from hippo.cognitive_map import DriveParams, LocaliserParams, PlannerParams
 from hippo.scenarios._meta_checks import (
     bad_field,
     check_number,
@@ -37,9 +35,11 @@ from hippo.scenarios._meta_checks import (
     field,
     finite,
 )
-from hippo.sim import World, arenas
+from hippo.sim import World
 from hippo.snapshot import load_snapshot, save_snapshot
-from hippo.tasks import PLACE_STATES, Log, Session, explore, make_places, stops, wall_side
+from hippo.tasks import Log, Session
+from hippo.tasks.lesson import LEARNED_SECTORS, Lesson
+from hippo.tasks.lesson import teach_patrol as teach
 from hippo.tasks.patrol import (
     ARENA_CHECKPOINTS,
     HIREL_WAITS,
@@ -49,12 +49,6 @@ from hippo.tasks.patrol import (
     check_patrol,
     choose_route,
 )
-
-#: learned place states are split by the direction of travel into 4 sectors (the rooms of
-#: two-rooms look the same turned round: docs/results.md); ground-truth fields do not alias,
-#: and 4 sectors did not help them (tuning seeds: two-rooms 332/376 -> 341/382, goal-arena
-#: 179/193 -> 178/193, course 340/340 either way)
-LEARNED_SECTORS = 4
 
 
 def add_course_arguments(parser: argparse.ArgumentParser) -> None:
@@ -154,19 +148,6 @@ def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser)
         which = "--waits" if "waits" in str(e).split(" for ")[0] else "--checkpoints"
         parser.error(f"argument {which}: {e}")
     args.checkpoints = [tuple(c) for c in cps]
-
-
-@dataclass
-class Lesson:
-    """A taught patrol robot: its world, place cells, agent, session and course."""
-
-    world: World
-    agent: Agent
-    session: Session
-    course: PatrolCourse
-    reproduced: float  # the fraction of the loop it reproduced alone after the leash
-    taught_stops: list[float | None]  # per checkpoint, the robot's stillness while blocked
-    route_kind: str = "shortest"  # what its route is (hippo.tasks.patrol_sets.choose_route)
 
 
 #: the options a saved lesson fixes (written into its meta, taken from it by --load)
@@ -269,35 +250,10 @@ def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
         meta = loaded["meta"]
         return Lesson(s.world, s.agent, s, course, float(meta["reproduced"]),
                       list(meta["taught_stops"]), kind)
-    arena = arenas.get(args.arena)
-    world = World(arena, sensors="ir8", seed=seed)
-    log = Log(n_drives=len(checkpoints))
-    kind, route = choose_route(args.arena, checkpoints, getattr(args, "route", "auto"))
-    side = wall_side(route, arena, seed)
-    # exploration: place cells only (HIREL learns the map on the leash)
-    tour = explore(world, round(args.explore_min * 60 / world.dt), 0.0, seed, log, side=side)
-    places = make_places(args.place_cells, arena, tour.sensors, units, seed, args.places,
-                         moving=tour.moving if args.reanchor else None)
-    places.prime(tour.sensors[-500:])  # the robot's reservoir ran all along: go on from there
-    drive = DriveParams(epsilon=0.01, learning_rate=0.5)
-    # after a kidnap or a rescue the robot goes on with its task (its drives kept): it first
-    # explores until the map recognises a place change (BrainParams.relocalise), so that no
-    # stop is chosen from the place code's memory of where it was carried from (kidnap,
-    # tuning seeds 0-9: 9/10 with it, 6/10 with the fixed 6 s settling)
-    params = AgentParams(states=PLACE_STATES, relocalise=LocaliserParams(),
-                         planner=PlannerParams(w=0.9, noise=0.0, exploration_threshold=0.05),
-                         wall_side=side, heading_sectors=heading_sectors(args))
-    agent = Agent(places, drives=dict.fromkeys(names, drive), params=params,
-                  sensors=world.sensors, robot=world.robot, seed=seed)
-    s = Session(world, agent, log, obs=tour[-1], phase=PatrolPhase.LEASH)
-    course = PatrolCourse(s, route, checkpoints, names, tour=kind == "tour")
-    reproduced = course.teach(list(args.waits))
-    taught = stops(s.log.arrays(), checkpoints, world.robot.moving_threshold,
-                   taught_phase=PatrolPhase.CHECKPOINTS)
-    longest = [max((st["duration"] for st in taught if st["checkpoint"] == k
-                    and st["phase"] == PatrolPhase.CHECKPOINTS), default=None)
-               for k in range(len(checkpoints))]
-    lesson = Lesson(world, agent, s, course, reproduced, longest, kind)
+    lesson = teach(args.arena, checkpoints, args.waits, seed=seed,
+                   route=getattr(args, "route", "auto"), place_cells=args.place_cells,
+                   explore_min=args.explore_min, units=units, places=args.places,
+                   heading_sectors=heading_sectors(args), reanchor=args.reanchor)
     if getattr(args, "save", None) is not None:
         save_lesson(args.save, lesson, args)
     return lesson

@@ -196,7 +196,8 @@ ARENAS: dict[str, Callable[[], Arena]] = {
 def get(name: str) -> Arena:
     """Build an arena by name (``two-rooms``, ``maze-e1``, ``goal-arena``, ``patrol-course``)."""
     if not isinstance(name, str):
-        raise ValueError(f"arena name must be a string ({', '.join(ARENAS)}), got {name!r}")
+        shown = repr(name) if len(repr(name)) <= 60 else f"a long {type(name).__name__}"
+        raise ValueError(f"arena name must be a string ({', '.join(ARENAS)}), got {shown}")
     key = name.replace("_", "-")
     if key == "maze":
         key = "maze-e1"

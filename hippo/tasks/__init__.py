@@ -16,10 +16,15 @@
   :func:`pass_report`, :func:`random_patrol`, ``ARENA_CHECKPOINTS``, ``HIREL_WAITS``
   (``patrol.py``) — a timed patrol on any arena: its lesson, its laps, what each pass by a
   checkpoint gave, and checkpoint sets nobody chose (for held-out tests).
+- :func:`teach_patrol`, :class:`Lesson` (``lesson.py``) — a taught patrol robot in one call, on
+  any arena (a built-in one's name or an ``Arena`` of one's own): what ``hippo run patrol``
+  does before its patrol.
 - :class:`Log`, :func:`event_arrays`, :func:`enum_names` (``log.py``) — the per-tick log and
   its files.
 
-A task is a short phase script on these (see ``scenarios/patrol_square.py`` in the repository).
+A task is a short phase script on these: ``scenarios/patrol_new_arena.py`` (a patrol in an
+arena of one's own, on :func:`teach_patrol`) and ``scenarios/patrol_square.py`` (the same
+from the building blocks) in the repository.
 """
 
 from hippo.tasks.explore import (
@@ -32,6 +37,7 @@ from hippo.tasks.explore import (
     wall_side,
     wall_tour,
 )
+from hippo.tasks.lesson import LEARNED_SECTORS, Lesson, teach_patrol
 from hippo.tasks.log import Log, enum_names, event_arrays
 from hippo.tasks.passes import AngleLaps, passes, progress_along, route_passes, stops
 from hippo.tasks.patrol import (
@@ -49,9 +55,10 @@ from hippo.tasks.session import Session
 from hippo.tasks.teaching import Experimenter
 
 __all__ = [
-    "ARENA_CHECKPOINTS", "HIREL_WAITS", "PAUSE_RATE", "PLACE_STATES", "AngleLaps",
-    "Experimenter", "LapCounter", "Log", "PatrolCourse", "PatrolPhase", "Route", "Session",
-    "Tour", "check_patrol", "enum_names", "event_arrays", "explore", "lead_from", "learn_map",
-    "make_places", "pass_report", "passes", "patrol_route", "progress_along", "random_patrol",
-    "route_passes", "stops", "wall_side", "wall_tour",
+    "ARENA_CHECKPOINTS", "HIREL_WAITS", "LEARNED_SECTORS", "PAUSE_RATE", "PLACE_STATES",
+    "AngleLaps", "Experimenter", "LapCounter", "Lesson", "Log", "PatrolCourse", "PatrolPhase",
+    "Route", "Session", "Tour", "check_patrol", "enum_names", "event_arrays", "explore",
+    "lead_from", "learn_map", "make_places", "pass_report", "passes", "patrol_route",
+    "progress_along", "random_patrol", "route_passes", "stops", "teach_patrol", "wall_side",
+    "wall_tour",
 ]

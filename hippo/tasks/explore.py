@@ -212,12 +212,28 @@ def wall_tour(arena: Arena, side: int = -1, *, seed: int = 0, max_s: float = 150
     return Route(pts, closed=True)
 
 
-def arena_tour(name: str, side: int = -1) -> Route | None:
-    """:func:`wall_tour` of the built-in arena ``name`` along wall ``side`` (-1 right, +1
-    left; cached: the tour is the arena's, not a run's)."""
+def arena_tour(arena: str | Arena, side: int = -1) -> Route | None:
+    """:func:`wall_tour` of ``arena`` (a built-in arena's name, or an :class:`Arena` of one's
+    own) along wall ``side`` (-1 right, +1 left; cached: the tour is the arena's, not a
+    run's)."""
     if side not in (-1, 1):
         raise ValueError(f"side must be -1 (right) or +1 (left), got {side!r}")
-    return _arena_tour(name, side)
+    if isinstance(arena, str):
+        return _arena_tour(arena, side)
+    if not isinstance(arena, Arena):
+        raise TypeError(f"arena must be an arena's name or an Arena, got "
+                        f"{type(arena).__name__}")
+    key = (id(arena), side)
+    hit = _OWN_TOURS.get(key)
+    if hit is None or hit[0] is not arena:
+        if len(_OWN_TOURS) >= 16:
+            _OWN_TOURS.pop(next(iter(_OWN_TOURS)))
+        hit = _OWN_TOURS[key] = (arena, wall_tour(arena, side))
+    return hit[1]
+
+
+#: the tours of arenas built by users (keyed by identity; the arena is kept with its tour)
+_OWN_TOURS: dict[tuple[int, int], tuple[Arena, Route | None]] = {}
 
 
 @functools.lru_cache(maxsize=16)

@@ -6,6 +6,9 @@
   what it is); :func:`check_patrol` — the checks a user's checkpoints and waits must pass
   (free floor, reachable, 40 cm apart along the route, one wait each).
 - :func:`random_patrol` — checkpoints and waits nobody chose (for held-out tests).
+
+Each takes the arena as a built-in arena's name (``"goal-arena"``) or as an
+:class:`~hippo.sim.arena.Arena` of one's own (:class:`~hippo.sim.ArenaBuilder`).
 """
 
 from __future__ import annotations
@@ -18,6 +21,7 @@ from scipy import ndimage
 
 from hippo._checks import check_seed
 from hippo.sim import arenas
+from hippo.sim.arena import Arena
 from hippo.tasks.explore import arena_tour
 from hippo.tasks.patrol_report import PASS_RADIUS
 from hippo.tasks.routes import Route
@@ -55,13 +59,22 @@ TOUR_REACH = 20.0
 
 
 
-def patrol_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
+def _arena(arena: str | Arena) -> Arena:
+    """The :class:`Arena` itself, or the built-in one of that name."""
+    if isinstance(arena, Arena):
+        return arena
+    if isinstance(arena, str):
+        return arenas.get(arena)
+    raise TypeError(f"arena must be an arena's name or an Arena, got {type(arena).__name__}")
+
+
+def patrol_route(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
                  kind: str = "auto") -> Route:
     """The leash route of :func:`choose_route`."""
-    return choose_route(arena_name, checkpoints, kind)[1]
+    return choose_route(arena, checkpoints, kind)[1]
 
 
-def choose_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
+def choose_route(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
                  kind: str = "auto") -> tuple[str, Route]:
     """``(what it is, the leash route)``: ``"course"``, patrol-course's corridor loop for its
     own checkpoints with ``kind`` ``"auto"``; else by ``kind``: ``"shortest"``, the shortest
@@ -79,15 +92,16 @@ def choose_route(arena_name: str, checkpoints: Sequence[Sequence[float]],
     and back (a maze's, and its tours, too)."""
     if kind not in ROUTE_KINDS:
         raise ValueError(f"route kind must be one of {', '.join(ROUTE_KINDS)}, got {kind!r}")
-    if kind == "auto" and arena_name == "patrol-course" and \
+    if kind == "auto" and arena == "patrol-course" and \
             [tuple(map(float, c)) for c in checkpoints] == ARENA_CHECKPOINTS["patrol-course"]:
         return "course", Route(arenas.loop_waypoints())
+    arena_name = _arena(arena).name
     route = None
     if kind != "tour":
-        route = Route.through(arenas.get(arena_name), checkpoints, clearance=8.0)
+        route = Route.through(_arena(arena), checkpoints, clearance=8.0)
         if kind == "shortest":
             return "shortest", route
-    tours = [t for t in (arena_tour(arena_name, side) for side in (-1, 1)) if t is not None]
+    tours = [t for t in (arena_tour(arena, side) for side in (-1, 1)) if t is not None]
     if route is not None and route.winding != 0 and any(t.winding == route.winding
                                                         for t in tours) \
             and route.doubled_length <= DOUBLED_MAX:
@@ -112,14 +126,15 @@ def _home_floor(arena: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
                                   np.argmin(np.abs(ys - arena.start_pose[1]))]
 
 
-def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
+def check_patrol(arena_spec: str | Arena, checkpoints: Sequence[Sequence[float]],
                  waits: Sequence[float], kind: str = "auto") -> Route:
     """Raise ``ValueError`` naming the problem unless the checkpoints lie on free floor of the
     arena (6 cm clear of every wall) that the robot can reach from the arena's start, are
     reachable from each other and are at least
     ``2 * PASS_RADIUS`` + 10 cm apart along the route, with one wait per checkpoint; returns
     the route."""
-    arena = arenas.get(arena_name)
+    arena = _arena(arena_spec)
+    arena_name = arena.name
     if len(waits) != len(checkpoints):
         raise ValueError(f"got {len(waits)} waits for {len(checkpoints)} checkpoints; give "
                          "one wait per checkpoint")
@@ -136,7 +151,7 @@ def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
         if not home[np.argmin(np.abs(xs - x)), np.argmin(np.abs(ys - y))]:
             raise ValueError(f"checkpoint ({x:g}, {y:g}) cannot be reached from the start of "
                              f"arena {arena_name!r} (it lies inside walls)")
-    route = patrol_route(arena_name, checkpoints, kind)
+    route = patrol_route(arena_spec, checkpoints, kind)
     s = sorted(route.progress(x, y) for x, y in checkpoints)
     gaps = np.diff([*s, s[0] + route.length])
     if gaps.min() < 40.0:
@@ -145,7 +160,8 @@ def check_patrol(arena_name: str, checkpoints: Sequence[Sequence[float]],
     return route
 
 
-def random_patrol(arena_name: str, n: int, seed: int, *, waits: tuple[float, float] = (8.0, 30.0),
+def random_patrol(arena_spec: str | Arena, n: int, seed: int, *,
+                  waits: tuple[float, float] = (8.0, 30.0),
                   clearance: float = 10.0, tries: int = 2000
                   ) -> tuple[list[tuple[float, float]], list[float]]:
     """``n`` checkpoints and their waits nobody chose: points drawn at random (generator
@@ -155,7 +171,7 @@ def random_patrol(arena_name: str, n: int, seed: int, *, waits: tuple[float, flo
     patrol in any arena."""
     if not 2 <= n <= 4:
         raise ValueError(f"n must be 2 to 4 checkpoints, got {n!r}")
-    arena = arenas.get(arena_name)
+    arena = _arena(arena_spec)
     rng = np.random.default_rng(check_seed("seed", seed))
     xs, ys, home = _home_floor(arena)
     _, _, roomy = arena.free_grid(clearance)
@@ -169,9 +185,9 @@ def random_patrol(arena_name: str, n: int, seed: int, *, waits: tuple[float, flo
             continue
         cps = [(float(x), float(y)) for x, y in pick]
         try:
-            check_patrol(arena_name, cps, w)
+            check_patrol(arena_spec, cps, w)
         except ValueError:
             continue
         return cps, w
     raise ValueError(f"no {n} checkpoints 40 cm apart along a route found in arena "
-                     f"{arena_name!r} after {tries} tries")
+                     f"{arena.name!r} after {tries} tries")

@@ -63,7 +63,10 @@ class Route:
         before it where one exists (the shortest path on which cells within 10 cm of them cost
         3 times as much, if at most half of it runs within 15 cm of them): around a ring the
         route is a loop, not out along one side and back along it. Where two points are joined
-        by one corridor only, the route runs along it both ways.
+        by one corridor only, the route runs along it both ways; so may a leg back along a
+        corridor wide enough to run more than 10 cm beside the leg before (a 30-cm ring with
+        two points: :attr:`winding` 0, and :func:`~hippo.tasks.patrol_sets.choose_route`
+        takes a wall tour instead).
 
         A leg also keeps ``keep_off`` cm from the other points where a way round them is at
         most ``detour`` times as long as its shortest path: a robot led from one checkpoint to

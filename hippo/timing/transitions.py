@@ -249,8 +249,9 @@ class TransitionCells:
                 warnings.warn(
                     f"transition {a}->{winner} came after {battery.previous_tau:.4g} s, beyond "
                     f"the battery's longest cell (mu_max={self.timing.params.mu_max:g} s): its "
-                    "delay is learned as saturated near mu_max; raise SpectralParams.mu_max "
-                    "to time it", DelayRangeWarning, stacklevel=2)
+                    "delay is learned as saturated near mu_max. Harmless for a stay no task "
+                    "times (a long visit while exploring); to time delays that long, raise "
+                    "SpectralParams.mu_max", DelayRangeWarning, stacklevel=2)
             if winner != a and (a, winner) not in self._index:
                 self._recruit((a, winner))
             rows = self._out.get(a)

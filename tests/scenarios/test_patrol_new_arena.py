@@ -1,0 +1,60 @@
+"""A patrol in an arena of one's own on ``hippo.tasks.teach_patrol``
+(``scenarios/patrol_new_arena.py``), and the patrol helpers on an ``Arena`` object."""
+
+import importlib.util
+import json
+from pathlib import Path
+
+import pytest
+
+from hippo.sim import ArenaBuilder
+from hippo.tasks import check_patrol, random_patrol, teach_patrol
+from hippo.tasks.patrol_sets import choose_route
+
+SCRIPT = Path(__file__).resolve().parents[2] / "scenarios" / "patrol_new_arena.py"
+
+
+def _load():
+    spec = importlib.util.spec_from_file_location("patrol_new_arena", SCRIPT)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_the_example_patrols_its_own_arena_with_learned_place_cells(tmp_path):
+    # seed 0, full size (5 loops): 4/4 and 5/5 passes with a stop, waits 7.8 and 24.8 s
+    # (asked 8 and 25); seed 1: 10/10
+    ex = _load()
+    report = ex.main(seed=0, out=str(tmp_path))
+    made = sum(r["stops_made"] for r in report)
+    passes = sum(r["passes"] for r in report)
+    assert passes >= 8 and made >= 0.8 * passes
+    for r, asked in zip(report, ex.WAITS, strict=True):
+        assert r["learned_s"] == pytest.approx(asked, rel=0.03)
+        assert all(w == pytest.approx(r["learned_s"], rel=0.03) for w in r["reproduced_waits_s"])
+    saved = json.loads((tmp_path / "metrics.json").read_text())
+    assert saved["route"] == "tour" and len(saved["checkpoints"]) == 2
+    assert (tmp_path / "run.npz").exists()
+
+
+def test_patrol_helpers_take_an_arena_of_ones_own():
+    arena = _load().alcove_ring()
+    kind, route = choose_route(arena, [(60.0, 15.0), (100.0, 82.0)])
+    assert kind == "tour" and route.winding != 0
+    cps, waits = random_patrol(arena, 3, seed=5)
+    assert len(cps) == 3 and check_patrol(arena, cps, waits).length > 0
+    # a checkpoint in the block, or too few waits, is named before any work
+    with pytest.raises(ValueError, match="not free floor of arena 'alcove-ring'"):
+        teach_patrol(arena, [(60.0, 15.0), (100.0, 50.0)], [8.0, 25.0])
+    with pytest.raises(ValueError, match="1 waits for 2 checkpoints"):
+        teach_patrol(arena, [(60.0, 15.0), (100.0, 82.0)], [8.0])
+    with pytest.raises(ValueError, match="place_cells"):
+        teach_patrol(arena, [(60.0, 15.0), (100.0, 82.0)], [8.0, 25.0], place_cells="gt")
+    with pytest.raises(TypeError, match="an arena's name or an Arena"):
+        choose_route(42, [(60.0, 15.0), (100.0, 82.0)])
+    # an arena's name still works, and a wrong type does not print the whole Arena
+    assert choose_route("two-rooms", [(15.0, 65.0), (90.0, 20.0), (100.0, 70.0)])[0] == "tour"
+    b = ArenaBuilder("tiny", 60, 60).outer_walls().start(30, 30)
+    with pytest.raises(ValueError, match="got a long Arena"):
+        from hippo.sim import arenas
+        arenas.get(b.build())
