@@ -52,28 +52,35 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
                  waits: Sequence[float], *, seed: int = 0, route: str = "auto",
                  place_cells: str = "learned", explore_min: float = 30.0, units: int = 24,
                  places: int = 40, heading_sectors: int | None = None,
-                 reanchor: bool = False) -> Lesson:
+                 reanchor: bool = False, side: int | None = None) -> Lesson:
     """Explore ``arena`` (a built-in arena's name or an :class:`Arena` of one's own) for
     ``explore_min`` simulated minutes, fit the place cells (``units`` ICA units, ``places``
     prototypes; or ground-truth fields), build the patrol robot and teach it ``waits`` (s) at
     ``checkpoints`` (cm) along the ``route`` (``"auto"``, ``"shortest"`` or ``"tour"``).
 
     ``heading_sectors`` (default: :data:`LEARNED_SECTORS` with learned cells, 1 with ground
-    truth) splits each place state by the direction of travel. The checkpoints and waits are
-    checked first (:func:`~hippo.tasks.patrol_sets.check_patrol`): a ``ValueError`` names
-    the problem before any work."""
+    truth) splits each place state by the direction of travel. ``side`` is the wall the robot
+    explores along and follows on its moves (-1 right, +1 left; default:
+    :func:`~hippo.tasks.explore.wall_side`'s probe, which a tour circling one block of two can
+    fool: a box with two blocks patrolled 1/41 and 4/49 with the probe's right wall, 23/23 and
+    21/23 with ``side=1``; an L-shaped ring 5/35 and 3/48 with its left wall, 17/17 and 11/15
+    with ``side=-1``; seeds 0 and 1). The checkpoints and waits are checked first
+    (:func:`~hippo.tasks.patrol_sets.check_patrol`): a ``ValueError`` names the problem
+    before any work."""
     arena_obj = _arena(arena)
     checkpoints = [(float(x), float(y)) for x, y in checkpoints]
-    check_patrol(arena, checkpoints, waits, route)
     if place_cells not in ("learned", "ground-truth"):
         raise ValueError(f"place_cells must be 'learned' or 'ground-truth', got {place_cells!r}")
+    if side is not None and side not in (-1, 1):
+        raise ValueError(f"side must be -1 (right wall), +1 (left wall) or None, got {side!r}")
+    check_patrol(arena, checkpoints, waits, route)
     sectors = heading_sectors if heading_sectors is not None else (
         LEARNED_SECTORS if place_cells == "learned" else 1)
     names = [f"checkpoint-{k}" for k in range(1, len(checkpoints) + 1)]
     world = World(arena_obj, sensors="ir8", seed=seed)
     log = Log(n_drives=len(checkpoints))
     kind, loop = choose_route(arena, checkpoints, route)
-    side = wall_side(loop, arena_obj, seed)
+    side = wall_side(loop, arena_obj, seed) if side is None else side
     # exploration: place cells only (HIREL learns the map on the leash)
     tour = explore(world, round(explore_min * 60 / world.dt), 0.0, seed, log, side=side)
     cells = make_places(place_cells, arena_obj, tour.sensors, units, seed, places,

@@ -48,6 +48,8 @@ def test_patrol_helpers_take_an_arena_of_ones_own():
         teach_patrol(arena, [(60.0, 15.0), (100.0, 50.0)], [8.0, 25.0])
     with pytest.raises(ValueError, match="1 waits for 2 checkpoints"):
         teach_patrol(arena, [(60.0, 15.0), (100.0, 82.0)], [8.0])
+    with pytest.raises(ValueError, match="side must be -1"):
+        teach_patrol(arena, [(60.0, 15.0), (100.0, 82.0)], [8.0, 25.0], side=0)
     with pytest.raises(ValueError, match="place_cells"):
         teach_patrol(arena, [(60.0, 15.0), (100.0, 82.0)], [8.0, 25.0], place_cells="gt")
     with pytest.raises(TypeError, match="an arena's name or an Arena"):
