@@ -1,24 +1,18 @@
 """A patrol in an arena of one's own on ``hippo.tasks.teach_patrol``
 (``scenarios/patrol_new_arena.py``), and the patrol helpers on an ``Arena`` object."""
 
-import importlib.util
 import json
-from pathlib import Path
 
 import pytest
+from user_examples import load_example
 
 from hippo.sim import ArenaBuilder
 from hippo.tasks import check_patrol, random_patrol, teach_patrol
 from hippo.tasks.patrol_sets import choose_route
 
-SCRIPT = Path(__file__).resolve().parents[2] / "scenarios" / "patrol_new_arena.py"
-
 
 def _load():
-    spec = importlib.util.spec_from_file_location("patrol_new_arena", SCRIPT)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_example("patrol_new_arena")
 
 
 def test_the_example_patrols_its_own_arena_with_learned_place_cells(tmp_path):

@@ -1,16 +1,12 @@
 """The 40-line user example (``scenarios/patrol_square.py``): a patrol in a new arena."""
 
-import importlib.util
-from pathlib import Path
+from user_examples import SCENARIOS, load_example
 
-SCRIPT = Path(__file__).resolve().parents[2] / "scenarios" / "patrol_square.py"
+SCRIPT = SCENARIOS / "patrol_square.py"
 
 
 def _load():
-    spec = importlib.util.spec_from_file_location("patrol_square", SCRIPT)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_example("patrol_square")
 
 
 def test_the_example_stays_short():
