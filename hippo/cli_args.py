@@ -319,6 +319,19 @@ def check_loaded_place_cells(args: argparse.Namespace, parser: argparse.Argument
                      "place cells; leave --place-cells out with --load")
 
 
+def check_loaded_options(args: argparse.Namespace, parser: argparse.ArgumentParser,
+                         meta: dict, keys: tuple[str, ...]) -> None:
+    """With ``--load``, an option among ``keys`` set away from its default and from the
+    snapshot's ``meta`` value is refused (the snapshot's value is what runs): e.g. ``--seed 9``
+    for a robot made with seed 0 ran seed 0 in silence."""
+    for key in keys:
+        given = getattr(args, key, None)
+        if key in meta and given != parser.get_default(key) and given != meta[key]:
+            opt = "--" + key.replace("_", "-")
+            parser.error(f"argument {opt}: the loaded robot was made with {key} {meta[key]!r}; "
+                         f"leave {opt} out with --load")
+
+
 def add_place_cells(parser: argparse.ArgumentParser, *, reanchor: bool = False) -> None:
     """``--place-cells learned|ground-truth`` and ``--[no-]reanchor`` (default ``reanchor``):
     the options every closed-loop task shares."""

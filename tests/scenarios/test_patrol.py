@@ -68,7 +68,8 @@ def test_a_saved_lesson_patrols_bit_for_bit_like_the_run_that_saved_it(tmp_path)
             assert loaded[k] == whole[k], k
     # a course that contradicts the saved one, or --save with --load, is one clear error
     for bad in (["--waits", "3,4,5"], ["--arena", "maze"], ["--save", str(tmp_path / "c")],
-                ["--heading-sectors", "2"], ["--place-cells", "ground-truth"]):
+                ["--heading-sectors", "2"], ["--place-cells", "ground-truth"],
+                ["--seed", "6"], ["--units", "30"]):
         with pytest.raises(SystemExit):
             run_scenario("patrol", ["--quick", "--load", str(tmp_path / "robot"), *bad,
                                     "--out", str(tmp_path / "d")])

@@ -30,7 +30,12 @@ def test_a_saved_robot_runs_the_same_trials(learned, tmp_path):
     out, m = learned
     robot = next(p for p in out.parent.iterdir() if p.name.startswith("pp_robot"))
     assert (robot / "manifest.json").is_file()
-    back = run_scenario("place-preference", ["--quick", "--load", str(robot), "--seed", "9",
+    # a --seed other than the robot's was run as the robot's seed in silence: refused now
+    with pytest.raises(SystemExit) as e:
+        run_scenario("place-preference", ["--quick", "--load", str(robot), "--seed", "9",
+                                          "--out", str(tmp_path / "s9")])
+    assert e.value.code == 2 and not (tmp_path / "s9").exists()
+    back = run_scenario("place-preference", ["--quick", "--load", str(robot),
                                              "--out", str(tmp_path)])
     assert back["loaded_from"] == str(robot) and back["seed"] == m["seed"] == 0
     for key in ("trials", "waits_s", "learned_delay_s", "path_length_ratios",
