@@ -126,16 +126,19 @@ def run(args: argparse.Namespace) -> dict:
     t_end = state["t_start"] + hours * 3600.0
     n_seg = int(np.ceil(hours * 60.0 / args.segment_min - 1e-9))
     p = DeploymentParams()
+    wall_before = float(state.get("wall_s", 0.0))   # the processes before a resume
     with Progress(n_seg, "deployment") as bar:
         bar.update(len(state["segments"]))
         while s.t < t_end - 1e-6 and len(state["segments"]) < n_seg:
             seg = _segment(s, course, state, p, min(s.t + args.segment_min * 60.0, t_end))
             state["segments"].append(seg)
+            # wall time of every process that ran this deployment, for a resumed run too
+            state["wall_s"] = wall_before + time.perf_counter() - t0
             ckpt.save(_checkpoint(meta, s, course, state))
             save_json(out / "segments.json", state["segments"])
             bar.update()
     s.save(out, Phase)  # run.npz: the last segment
-    metrics = _metrics(meta, state, s, time.perf_counter() - t0)
+    metrics = _metrics(meta, state, s, wall_before + time.perf_counter() - t0)
     from hippo.plots.deployment import plot_deployment
 
     fig, _ = plot_deployment(state["segments"])
