@@ -311,22 +311,16 @@ class _Given(argparse.Action):
         setattr(namespace, f"{self.dest}_given", True)
 
 
-def check_loaded_place_cells(args: argparse.Namespace, parser: argparse.ArgumentParser,
-                             saved: str) -> None:
-    """With ``--load``, a ``--place-cells`` other than the snapshot's ``saved`` is refused."""
-    if getattr(args, "place_cells_given", False) and args.place_cells != saved:
-        parser.error(f"argument --place-cells: the loaded robot was taught with {saved} "
-                     "place cells; leave --place-cells out with --load")
-
-
 def check_loaded_options(args: argparse.Namespace, parser: argparse.ArgumentParser,
                          meta: dict, keys: tuple[str, ...]) -> None:
-    """With ``--load``, an option among ``keys`` set away from its default and from the
-    snapshot's ``meta`` value is refused (the snapshot's value is what runs): e.g. ``--seed 9``
-    for a robot made with seed 0 ran seed 0 in silence."""
+    """With ``--load``, an option among ``keys`` given (set away from its default, or marked
+    given by its action: ``--place-cells``) and other than the snapshot's ``meta`` value is
+    refused (the snapshot's value is what runs): e.g. ``--seed 9`` for a robot made with
+    seed 0 ran seed 0 in silence."""
     for key in keys:
         given = getattr(args, key, None)
-        if key in meta and given != parser.get_default(key) and given != meta[key]:
+        was_given = getattr(args, f"{key}_given", given != parser.get_default(key))
+        if key in meta and was_given and given != meta[key]:
             opt = "--" + key.replace("_", "-")
             parser.error(f"argument {opt}: the loaded robot was made with {key} {meta[key]!r}; "
                          f"leave {opt} out with --load")

@@ -47,6 +47,13 @@ def sfa_cutoff(text: str) -> float | str:
     return text if text == "auto" else float(text)
 
 
+def check_leak_groups(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
+    """``--neurons`` must hold one group of neurons per ``--leak`` rate."""
+    if args.neurons < len(args.leak):
+        parser.error(f"argument --neurons: {args.neurons} neuron(s) cannot hold the "
+                     f"{len(args.leak)} groups of --leak (one group of neurons per leak rate)")
+
+
 def mean_sd(values: list[float]) -> tuple[float, float]:
     """Mean and sample sd over seeds of the finite values (sd 0 for one value, nan for none)."""
     v = np.asarray(values, dtype=float)

@@ -20,7 +20,6 @@ from hippo.cli_args import (
     WAIT_S,
     add_place_cells,
     check_loaded_options,
-    check_loaded_place_cells,
     integer,
     number,
     numbers,
@@ -118,8 +117,8 @@ def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser)
         except (OSError, ValueError) as e:
             parser.error(f"argument --load: {args.load}: {' '.join(str(e).split())}")
         meta = args.loaded["meta"]
-        check_loaded_place_cells(args, parser, meta["place_cells"])
-        check_loaded_options(args, parser, meta, ("seed", "explore_min", "units", "places"))
+        check_loaded_options(args, parser, meta, ("place_cells", "seed", "explore_min", "units",
+                                                  "places"))
         for opt, key in (("--arena", "arena"), ("--checkpoints", "checkpoints"),
                          ("--waits", "waits")):
             given = getattr(args, key, None)

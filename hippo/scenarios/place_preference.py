@@ -37,7 +37,6 @@ from hippo.cli_args import (
     UNITS,
     add_place_cells,
     check_loaded_options,
-    check_loaded_place_cells,
     integer,
     number,
     out_dir,
@@ -122,9 +121,8 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
         args.loaded = _load_robot(args.load)
     except (CorruptFileError, ValueError, TypeError) as e:
         parser.error(f"argument --load: {args.load}: {' '.join(str(e).split())}")
-    check_loaded_place_cells(args, parser, args.loaded["meta"]["place_cells"])
-    check_loaded_options(args, parser, args.loaded["meta"], ("seed", "explore_min",
-                                                              "explore_rho"))
+    check_loaded_options(args, parser, args.loaded["meta"], ("place_cells", "seed",
+                                                              "explore_min", "explore_rho"))
 
 
 #: what a saved place-preference robot holds, beside the agent, the world and the observation

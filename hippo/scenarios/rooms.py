@@ -47,6 +47,7 @@ from hippo.scenarios._common import (
     add_cache_argument,
     add_seeds_argument,
     cached_recording,
+    check_leak_groups,
     mean_sd,
     prepare_out,
     seed_list,
@@ -116,9 +117,7 @@ def _units(text: str) -> int | str:
 
 def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
     """Checks across arguments, before any work."""
-    if args.neurons < len(args.leak):
-        parser.error(f"argument --neurons: {args.neurons} neuron(s) cannot hold the "
-                     f"{len(args.leak)} groups of --leak (one group of neurons per leak rate)")
+    check_leak_groups(args, parser)
     if args.select and args.units == "auto":
         parser.error("argument --units: 'auto' and --select each choose the unit count "
                      "without labels; leave one out")
@@ -170,13 +169,6 @@ def _kidnapped_run(arena, rec: Recording, n_train: int, test_len: int, seed: int
     return run, [k for k, _ in kid]
 
 
-def _finite_mean(values: Any) -> float:
-    """Mean of the finite values (NaN, silently, when there are none)."""
-    a = np.asarray(values, float)
-    ok = np.isfinite(a)
-    return float(a[ok].mean()) if ok.any() else float("nan")
-
-
 def _room_cells_mean(Y: np.ndarray, lab: np.ndarray, n_train: int, n: int) -> float:
     """For ``--select``'s analysis: the mean over rooms of the room cell's test balanced
     accuracy (unit, threshold and sign chosen on the training part; corridors left out)."""
@@ -188,7 +180,7 @@ def _room_cells_mean(Y: np.ndarray, lab: np.ndarray, n_train: int, n: int) -> fl
     acc = [M.balanced_accuracy(
         M.fit_binary_cell(Y[tr], lab[tr] == r, lab[tr] >= 0).predict(Y[te])[m],
         (lab[te] == r)[m]) for r in range(n) if (seen == r).any() and (seen != r).any()]
-    return float(np.nanmean(acc)) if np.isfinite(acc).any() else float("nan")
+    return mean_sd(acc)[0]
 
 
 def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any]:
@@ -252,10 +244,10 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
         "room_occupancy": [float(np.mean(lab == r)) for r in range(n)],
         "room_cell_balanced_accuracy": bacc,
         "room_cell_units": [-1 if c is None else c.unit for c in cells],
-        "room_cell_mean": _finite_mean(bacc),
+        "room_cell_mean": mean_sd(bacc)[0],
         "rooms_scored": int(np.isfinite(bacc).sum()),
         # a test part inside one room has no balanced accuracy (recall of one room alone)
-        "decoder_balanced_accuracy": (_finite_mean(recall)
+        "decoder_balanced_accuracy": (mean_sd(recall)[0]
                                       if np.isfinite(recall).sum() >= 2 else float("nan")),
     }
     if args.ceiling:
@@ -264,9 +256,9 @@ def _one_flat(args: argparse.Namespace, seed: int, quick: bool) -> dict[str, Any
         per = [M.balanced_accuracy((ceil.predicted == r)[in_room], (lab == r)[in_room])
                for r in range(n)]
         out.update(ceiling_room_balanced_accuracy=per,
-                   ceiling_room_mean=_finite_mean(per),
+                   ceiling_room_mean=mean_sd(per)[0],
                    ceiling_decoder_balanced_accuracy=ceil.balanced_accuracy,
-                   gap_to_ceiling=_finite_mean(per) - _finite_mean(bacc))
+                   gap_to_ceiling=mean_sd(per)[0] - mean_sd(bacc)[0])
     # kidnapping: an unseen test run continuing from the end of training
     test_len = ticks - n_train
     run, events = _kidnapped_run(arena, rec, n_train, test_len, seed, args.rho, rooms,

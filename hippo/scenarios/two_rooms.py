@@ -56,6 +56,7 @@ from hippo.progress import Progress
 from hippo.scenarios._common import (
     add_cache_argument,
     add_seeds_argument,
+    check_leak_groups,
     mean_sd,
     parse_leak,
     prepare_out,
@@ -154,9 +155,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
     """Checks across arguments, before any work."""
-    if args.neurons < len(args.leak):
-        parser.error(f"argument --neurons: {args.neurons} neuron(s) cannot hold the "
-                     f"{len(args.leak)} groups of --leak (one group of neurons per leak rate)")
+    check_leak_groups(args, parser)
     if args.n_ica > args.n_sfa:
         parser.error(f"argument --n-ica: {args.n_ica} exceeds --n-sfa {args.n_sfa} "
                      "(ICA rotates the SFA outputs)")

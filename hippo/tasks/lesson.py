@@ -23,7 +23,7 @@ from hippo.tasks.explore import PLACE_STATES, explore, make_places, wall_side
 from hippo.tasks.log import Log
 from hippo.tasks.passes import stops
 from hippo.tasks.patrol import PatrolCourse, PatrolPhase
-from hippo.tasks.patrol_sets import _arena, check_patrol, choose_route
+from hippo.tasks.patrol_sets import _arena, checked_route
 from hippo.tasks.session import Session
 
 __all__ = ["LEARNED_SECTORS", "Lesson", "teach_patrol"]
@@ -73,13 +73,12 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
         raise ValueError(f"place_cells must be 'learned' or 'ground-truth', got {place_cells!r}")
     if side is not None and side not in (-1, 1):
         raise ValueError(f"side must be -1 (right wall), +1 (left wall) or None, got {side!r}")
-    check_patrol(arena, checkpoints, waits, route)
+    kind, loop = checked_route(arena, checkpoints, waits, route)
     sectors = heading_sectors if heading_sectors is not None else (
         LEARNED_SECTORS if place_cells == "learned" else 1)
     names = [f"checkpoint-{k}" for k in range(1, len(checkpoints) + 1)]
     world = World(arena_obj, sensors="ir8", seed=seed)
     log = Log(n_drives=len(checkpoints))
-    kind, loop = choose_route(arena, checkpoints, route)
     side = wall_side(loop, arena_obj, seed) if side is None else side
     # exploration: place cells only (HIREL learns the map on the leash)
     tour = explore(world, round(explore_min * 60 / world.dt), 0.0, seed, log, side=side)

@@ -95,10 +95,10 @@ def choose_route(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
     if kind == "auto" and arena == "patrol-course" and \
             [tuple(map(float, c)) for c in checkpoints] == ARENA_CHECKPOINTS["patrol-course"]:
         return "course", Route(arenas.loop_waypoints())
-    arena_name = _arena(arena).name
+    arena_obj = _arena(arena)
     route = None
     if kind != "tour":
-        route = Route.through(_arena(arena), checkpoints, clearance=8.0)
+        route = Route.through(arena_obj, checkpoints, clearance=8.0)
         if kind == "shortest":
             return "shortest", route
     tours = [t for t in (arena_tour(arena, side) for side in (-1, 1)) if t is not None]
@@ -114,7 +114,7 @@ def choose_route(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
         return "shortest", route
     far = min(([c for c in checkpoints if t.distance(*c) > TOUR_REACH] for t in tours),
               key=len, default=list(checkpoints))
-    raise ValueError(f"no wall tour of arena {arena_name!r} passes within {TOUR_REACH:g} cm of "
+    raise ValueError(f"no wall tour of arena {arena_obj.name!r} passes within {TOUR_REACH:g} cm of "
                      f"checkpoint(s) {', '.join(f'({x:g}, {y:g})' for x, y in far)}")
 
 
@@ -133,6 +133,13 @@ def check_patrol(arena_spec: str | Arena, checkpoints: Sequence[Sequence[float]]
     reachable from each other and are at least
     ``2 * PASS_RADIUS`` + 10 cm apart along the route, with one wait per checkpoint; returns
     the route."""
+    return checked_route(arena_spec, checkpoints, waits, kind)[1]
+
+
+def checked_route(arena_spec: str | Arena, checkpoints: Sequence[Sequence[float]],
+                  waits: Sequence[float], kind: str = "auto") -> tuple[str, Route]:
+    """:func:`check_patrol`'s checks, returning :func:`choose_route`'s ``(what it is, the
+    route)`` (the route is built once for both)."""
     arena = _arena(arena_spec)
     arena_name = arena.name
     if len(waits) != len(checkpoints):
@@ -151,13 +158,13 @@ def check_patrol(arena_spec: str | Arena, checkpoints: Sequence[Sequence[float]]
         if not home[np.argmin(np.abs(xs - x)), np.argmin(np.abs(ys - y))]:
             raise ValueError(f"checkpoint ({x:g}, {y:g}) cannot be reached from the start of "
                              f"arena {arena_name!r} (it lies inside walls)")
-    route = patrol_route(arena_spec, checkpoints, kind)
+    route_kind, route = choose_route(arena_spec, checkpoints, kind)
     s = sorted(route.progress(x, y) for x, y in checkpoints)
     gaps = np.diff([*s, s[0] + route.length])
     if gaps.min() < 40.0:
         raise ValueError(f"two checkpoints are {gaps.min():.0f} cm apart along the route; "
                          f"they need 40 cm (a pass is {PASS_RADIUS:g} cm either side)")
-    return route
+    return route_kind, route
 
 
 def random_patrol(arena_spec: str | Arena, n: int, seed: int, *,

@@ -148,9 +148,14 @@ class Route:
             self._dense_pts = np.column_stack([s, self._points_at(s)])
         return self._dense_pts
 
-    def _points_at(self, s: np.ndarray) -> np.ndarray:
+    def _segments_at(self, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(s, k)``: progress ``s`` wrapped round a closed route (clipped to an open one's
+        ends) and the segment ``k`` it lies on."""
         s = np.mod(s, self.length) if self.closed else np.clip(s, 0.0, self.length)
-        k = np.clip(np.searchsorted(self._s0, s, side="right") - 1, 0, len(self._s0) - 1)
+        return s, np.clip(np.searchsorted(self._s0, s, side="right") - 1, 0, len(self._s0) - 1)
+
+    def _points_at(self, s: np.ndarray) -> np.ndarray:
+        s, k = self._segments_at(s)
         u = (s - self._s0[k]) / np.maximum(self._len[k], 1e-12)
         return self._a[k] + u[:, None] * self._d[k]
 
@@ -159,8 +164,7 @@ class Route:
         closed) and the direction of travel there (radians)."""
         s = check_real("s", s)
         x, y = self._points_at(np.array([s]))[0]
-        ss = float(np.mod(s, self.length)) if self.closed else float(s)
-        k = int(np.clip(np.searchsorted(self._s0, ss, side="right") - 1, 0, len(self._s0) - 1))
+        k = int(self._segments_at(np.array([s]))[1][0])
         return float(x), float(y), math.atan2(float(self._d[k, 1]), float(self._d[k, 0]))
 
     def sample(self, spacing: float) -> list[tuple[float, float]]:
@@ -219,7 +223,7 @@ class Route:
         step = 3.0
         s = np.arange(0.0, self.length, step)
         p = self._points_at(s)
-        k = np.clip(np.searchsorted(self._s0, s, side="right") - 1, 0, len(self._s0) - 1)
+        k = self._segments_at(s)[1]
         u = self._d[k] / np.maximum(self._len[k], 1e-12)[:, None]
         near = np.hypot(*(p[:, None, :] - p[None, :, :]).transpose(2, 0, 1)) < 12.0
         ds = np.abs(s[:, None] - s[None, :])
