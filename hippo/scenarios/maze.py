@@ -90,7 +90,7 @@ from hippo.scenarios._common import (
 from hippo.sim import arenas
 from hippo.sim.record import record
 
-TARGETS = {"localized_units": 62, "location_decoding_accuracy_test": 0.80}
+TARGETS = {"localized_units": 60, "location_decoding_within_one_step_test": 0.85}  # issue 11
 #: the shortest recording, and the fewest reservoir samples after down-sampling
 MIN_TICKS, MIN_SAMPLES = 5000, 200
 #: the fewest training updates left after the washout
@@ -357,8 +357,8 @@ def run(args: argparse.Namespace) -> dict:
         f"{metrics['population_decoding_within_one_step_test']:.2f} by the nearest centroid"
         + (f"; without the reservoir {metrics['ablation_localized_units']:.1f} units, "
            f"{metrics['ablation_location_decoding_accuracy_test']:.2f}" if args.ablation else "")
-        + f" (targets: {TARGETS['localized_units']} units, "
-        f"{TARGETS['location_decoding_accuracy_test']})"))
+        + f" (targets: >= {TARGETS['localized_units']} units, "
+        f">= {TARGETS['location_decoding_within_one_step_test']} within one step)"))
     return metrics
 
 
