@@ -298,8 +298,9 @@ def out_file(text: str) -> Path:
 PLACE_CELLS = ("learned", "ground-truth")
 #: the closed-loop tasks' bounds on their options (the command line and a saved robot's meta
 #: alike): exploration in simulated minutes, ICA units, place prototypes, a taught wait in s
-#: (from :data:`hippo.tasks.patrol_sets.MIN_WAIT_S`: shorter waits are never reproduced)
-EXPLORE_MIN, UNITS, PLACES, WAIT_S = (5.0, 600.0), (1, 200), (1, 500), (2.0, 120.0)
+#: (:data:`hippo.tasks.patrol_sets.MIN_WAIT_S` to ``MAX_WAIT_S``); prototypes up to
+#: ``PrototypeParams.max_prototypes`` (256)
+EXPLORE_MIN, UNITS, PLACES, WAIT_S = (5.0, 600.0), (1, 200), (1, 256), (2.0, 120.0)
 
 
 class _Given(argparse.Action):

@@ -3,6 +3,7 @@ Dask distributed)."""
 
 from __future__ import annotations
 
+import importlib.util
 import sys
 import warnings
 from collections.abc import Sequence
@@ -53,7 +54,7 @@ def sweep_main(argv: Sequence[str]) -> int:
     known = {s.lstrip("-") for act in parser._actions for s in act.option_strings}
     for item in a.param:
         name, values = item[0].lstrip("-"), item[1:]
-        if name not in known or name in ("out", "seed"):
+        if name not in known or name in ("out", "seed", "save"):
             ap.error(f"--param {name}: not an option of scenario {a.scenario!r} "
                      f"(choose from: {', '.join(sorted(known - {'out', 'seed', 'h', 'help'}))})")
         if not values:
@@ -73,8 +74,13 @@ def sweep_main(argv: Sequence[str]) -> int:
         if name in ("seed", "seeds", "out"):
             ap.error(f"{opt} after --: the sweep sets each cell's seed and output folder "
                      "(use hippo sweep's --seeds and --out)")
+        if name == "save":
+            ap.error(f"{opt} after --: every cell would write the same snapshot folder")
         if name in params:
             ap.error(f"{opt} after -- is also a --param of the sweep: give its values there")
+    if a.parquet and not all(importlib.util.find_spec(m) for m in ("pandas", "pyarrow")):
+        ap.error("--parquet needs pandas and pyarrow (pip install pandas pyarrow); they are "
+                 "not installed")
     cells = grid(a.scenario, a.seeds, params, extra)
     out = Path(a.out or f"out/sweep-{a.scenario}")
     try:  # run_sweep parses every cell's options before anything runs (check_cells)

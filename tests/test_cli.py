@@ -65,7 +65,8 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["run", "maze", "--spectral-radius", "1"], "--spectral-radius"),
     (["run", "maze", "--washout", "soon"], "--washout"),
     (["run", "maze", "--ticks", "6000", "--washout", "150"], "--washout"),
-    (["run", "maze", "--ticks", "6000"], "--washout"),
+    (["run", "maze", "--ticks", "6000"], "--ticks"),   # the automatic washout follows --ticks
+    (["run", "maze", "--quick", "--downsample", "100"], "--downsample"),   # --quick's 60,000
     # place preference
     (["run", "place-preference", "--units", "0"], "--units"),
     (["run", "place-preference", "--explore-min", "0"], "--explore-min"),
@@ -75,6 +76,8 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["run", "place-preference", "--teach", "-1"], "--teach"),
     (["run", "place-preference", "--extinction", "-1"], "--extinction"),
     (["run", "place-preference", "--places", "0"], "--places"),
+    (["run", "place-preference", "--places", "300"], "--places"),   # over max_prototypes 256
+    (["run", "patrol", "--places", "257"], "--places"),
     (["run", "place-preference", "--trial-timeout", "0"], "--trial-timeout"),
     (["run", "place-preference", "--place-cells", "bogus"], "--place-cells"),
     (["run", "place-preference", "--explore-rho", "1.5"], "--explore-rho"),

@@ -182,6 +182,25 @@ def test_cli_refuses_a_grid_the_options_after_dashes_would_override(tmp_path, ca
             sweep_main(base + args)
         assert exc.value.code == 2 and says in capsys.readouterr().err
     assert not (tmp_path / "s").exists() and not (tmp_path / "x").exists()
+    # every cell wrote the same snapshot folder (third fuzzing pass)
+    patrol = ["patrol", "--out", str(tmp_path / "p")]
+    for args, says in ((["--", "--quick", "--save", str(tmp_path / "r")], "--save after --"),
+                       (["--param", "save", str(tmp_path / "r")], "--param save")):
+        with pytest.raises(SystemExit) as exc:
+            sweep_main(patrol + args)
+        assert exc.value.code == 2 and says in capsys.readouterr().err
+    assert not (tmp_path / "p").exists() and not (tmp_path / "r").exists()
+
+
+def test_parquet_without_pandas_is_refused_before_any_cell_runs(tmp_path, capsys):
+    import importlib.util
+
+    if all(importlib.util.find_spec(m) for m in ("pandas", "pyarrow")):
+        pytest.skip("pandas and pyarrow are installed")
+    with pytest.raises(SystemExit) as exc:
+        sweep_main(["timing-demo", "--parquet", "--out", str(tmp_path / "s"), "--", "--quick"])
+    assert exc.value.code == 2 and "--parquet needs pandas" in capsys.readouterr().err
+    assert not (tmp_path / "s").exists()
 
 
 def test_a_value_its_scenario_refuses_is_named_before_anything_runs(tmp_path, capsys):

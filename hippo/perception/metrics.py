@@ -190,7 +190,12 @@ def fit_winner_decoder(Y: np.ndarray, labels: np.ndarray, n_locations: int) -> n
 def decode_locations(Y: np.ndarray, mapping: np.ndarray) -> np.ndarray:
     """Decoded location per sample: the location of the winning unit."""
     Y = _check_Y(Y)
-    return np.asarray(mapping)[np.argmax(Y, axis=1)]
+    m = np.asarray(mapping)
+    if m.ndim != 1 or m.size != Y.shape[1] or not np.issubdtype(m.dtype, np.integer) \
+            or (m.size and m.min() < 0):
+        raise ValueError(f"mapping must give one location (an integer >= 0) per unit: "
+                         f"{Y.shape[1]} units, got {m.dtype} {m.shape}")
+    return m[np.argmax(Y, axis=1)]
 
 
 def fit_centroid_decoder(Y: np.ndarray, labels: np.ndarray, n_locations: int) -> np.ndarray:
@@ -235,14 +240,21 @@ def decoding_accuracy(Y: np.ndarray, labels: np.ndarray, decoder: np.ndarray,
     """(exact, within-one-step) accuracy of a decoder on ``Y`` (e.g. test data). ``decoder``:
     a unit → location mapping (1-D, :func:`fit_winner_decoder`: the winning unit's location) or
     location centroids (2-D, :func:`fit_centroid_decoder`: the nearest centroid's location)."""
-    lab = _check_labels(labels)
-    Y = _check_Y(Y, lab.size)
+    nb = None if neighbors is None else np.asarray(neighbors)
+    if nb is not None and (nb.ndim != 2 or nb.shape[0] != nb.shape[1] or nb.dtype != bool):
+        raise ValueError(f"neighbors must be a square boolean matrix, got {nb.dtype} {nb.shape}")
     dec = np.asarray(decoder)
+    n = nb.shape[0] if nb is not None else dec.shape[0] if dec.ndim == 2 else None
+    lab = _check_labels(labels, n)
+    Y = _check_Y(Y, lab.size)
     pred = decode_nearest_centroid(Y, dec) if dec.ndim == 2 else decode_locations(Y, dec)
+    if nb is not None and pred.size and pred.max() >= nb.shape[0]:
+        raise ValueError(f"the decoder names location {pred.max()}; neighbors covers "
+                         f"{nb.shape[0]} locations")
     exact = float(np.mean(pred == lab)) if lab.size else float("nan")
-    if neighbors is None:
+    if nb is None:
         return exact, exact
-    near = float(np.mean(np.asarray(neighbors)[pred, lab])) if lab.size else float("nan")
+    near = float(np.mean(nb[pred, lab])) if lab.size else float("nan")
     return exact, near
 
 
@@ -319,9 +331,17 @@ def recovery_times(correct: np.ndarray, events: np.ndarray, *, hold: int = 5,
     consecutive ticks. ``correct`` is a boolean series (T,); ``events`` tick indices. The search
     for event ``i`` stops at the next event (or ``horizon`` ticks later); if it never recovers,
     the result is NaN."""
-    correct = np.asarray(correct, bool)
-    ev = np.asarray(events, int)
+    c = np.asarray(correct)
+    if c.ndim != 1 or c.dtype != bool:
+        raise ValueError(f"correct must be a 1-D boolean series, got {c.dtype} {c.shape}")
+    if isinstance(hold, bool) or int(hold) != hold or hold < 1:
+        raise ValueError(f"hold must be an integer >= 1, got {hold!r}")
+    correct, hold = c, int(hold)
+    ev = np.asarray(events)
     T = correct.size
+    if ev.ndim != 1 or (ev.size and (not np.issubdtype(ev.dtype, np.integer) or ev.min() < 0
+                                      or ev.max() >= T or np.any(np.diff(ev) < 0))):
+        raise ValueError(f"events must be sorted tick indices in [0, {T}), got {ev!r:.80}")
     out = np.full(ev.size, np.nan)
     for i, e in enumerate(ev):
         stop = ev[i + 1] if i + 1 < ev.size else T

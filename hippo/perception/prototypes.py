@@ -53,7 +53,8 @@ class PrototypeParams:
             raise ValueError(f"recruit_threshold must lie in [0, 1), got "
                              f"{self.recruit_threshold}")
         if self.max_prototypes < self.n_prototypes:
-            raise ValueError("max_prototypes must be >= n_prototypes")
+            raise ValueError(f"max_prototypes ({self.max_prototypes}) must be >= n_prototypes "
+                             f"({self.n_prototypes})")
 
 
 class PlacePrototypes(ParamsEstimator):
@@ -70,7 +71,14 @@ class PlacePrototypes(ParamsEstimator):
         k = int(self.params.n_prototypes)
         if Y.shape[0] < k:
             raise ValueError(f"need at least n_prototypes={k} samples, got {Y.shape[0]}")
-        centres, _ = kmeans2(Y, k, seed=self.params.seed, minit="++")
+        span = float(np.max(np.abs(Y), initial=0.0))
+        if not np.isfinite(span * span * 4.0 * Y.shape[1]):
+            # squared distances overflow float64: k-means++ then draws from NaN probabilities
+            # (scipy's kmeans2 crashed the interpreter at |Y| ~ 1e155)
+            raise ValueError(f"Y holds values up to {span:.3g}, whose squared distances "
+                             "overflow float64; rescale it")
+        with np.errstate(invalid="ignore", divide="ignore"):  # all rows alike: k-means++'s 0/0
+            centres, _ = kmeans2(Y, k, seed=self.params.seed, minit="++")
         # drop empty clusters (kmeans2 may leave a centre with no member far away)
         near = np.argmin(_sqdist(Y, centres), axis=1)
         centres = centres[np.unique(near)]

@@ -116,9 +116,9 @@ def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser)
             args.loaded = load_lesson(args.load)
         except (OSError, ValueError) as e:
             parser.error(f"argument --load: {args.load}: {' '.join(str(e).split())}")
-        meta = args.loaded["meta"]
+        meta = loaded_meta(args.loaded)
         check_loaded_options(args, parser, meta, ("place_cells", "seed", "explore_min", "units",
-                                                  "places"))
+                                                  "places", "route", "reanchor"))
         for opt, key in (("--arena", "arena"), ("--checkpoints", "checkpoints"),
                          ("--waits", "waits")):
             given = getattr(args, key, None)
@@ -134,6 +134,7 @@ def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser)
         args.heading_sectors = had
         for key in _META:
             setattr(args, key, meta[key])
+        args.reanchor = meta["reanchor"]
         args.checkpoints = [tuple(c) for c in meta["checkpoints"]]
         args.route = meta_route(meta)
         return
@@ -217,13 +218,28 @@ def _check_meta(meta: dict) -> None:
         raise ValueError(f"the snapshot's course: {e}") from None
 
 
+def loaded_meta(loaded: dict) -> dict:
+    """A loaded lesson's meta, with what its robot says of itself: ``units``, the ICA units its
+    learned place cells were fitted with (snapshots before 2026-11-27 wrote the prototypes'
+    count there), and ``reanchor``, whether they re-anchor after a lift."""
+    meta = dict(loaded["meta"])
+    places = loaded["agent"].places
+    model = getattr(places, "model", None)
+    if model is not None:
+        meta["units"] = int(model.params.n_ica)
+    meta["reanchor"] = getattr(places, "relocaliser", None) is not None
+    return meta
+
+
 def save_lesson(folder: str | Path, lesson: Lesson, args: argparse.Namespace) -> None:
     """The taught robot, its world (the teacher detached while saving: it is idle), the last
     observation, the lap counter and what the lesson was."""
     s = lesson.session
     meta = {k: _plain(getattr(args, k)) for k in _META}
     meta["route"] = getattr(args, "route", "auto")
-    meta.update(seed=int(args.seed), units=int(lesson.agent.places.n_units),
+    model = getattr(lesson.agent.places, "model", None)  # learned cells: their ICA units
+    meta.update(seed=int(args.seed),
+                units=int(model.params.n_ica) if model is not None else int(args.units),
                 reproduced=float(lesson.reproduced), taught_stops=lesson.taught_stops)
     s.world.detach(s.teacher)
     try:

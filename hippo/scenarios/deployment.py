@@ -75,7 +75,7 @@ def _meta(args: argparse.Namespace, hours: float, units: int) -> dict:
             "waits": [float(w) for w in args.waits], "place_cells": args.place_cells,
             "explore_min": float(args.explore_min), "units": int(units),
             "places": int(args.places), "route": getattr(args, "route", "auto"),
-            "heading_sectors": heading_sectors(args),
+            "heading_sectors": heading_sectors(args), "reanchor": bool(args.reanchor),
             "hours": float(hours),
             "segment_min": float(args.segment_min), "quick": bool(args.quick)}
 

@@ -23,15 +23,12 @@ the maze, i.e. ~260 reservoir samples per tour. Our e-puck (0.67 cm/tick) tours 
 direction) needs ``--downsample 25``, the default here; ``--downsample 50`` is the paper's
 literal number (about one sample per cell pass, too coarse for single-cell place fields).
 
-Analysis runs at the down-sampled rate; sample ``k`` is labelled with the robot's location at
-the centre of the anti-aliasing window (``tick - delay``), as an offline resampler (ICANN09 used
-Matlab's zero-phase ``resample``) would align it. ``..._online`` numbers score the held outputs
-against the location at the current tick, i.e. what the closed-loop agent sees, filter lag
-included.
+Analysis runs at the down-sampled rate; sample ``k`` is labelled with the location at the centre
+of the anti-aliasing window (``tick - delay``), as an offline resampler (ICANN09: Matlab's
+``resample``) aligns it; ``..._online`` numbers use the current tick's (the agent's view).
 
-Exploration: the default wall follower never switches side (``--rho 0``), so the robot tours the
-whole perfect maze again and again, like ICANN09's exploring controller; random side switches
-(``--rho 0.008``) leave parts of the maze unvisited for long stretches.
+Exploration: the wall follower never switches side (``--rho 0``) and tours the whole maze again
+and again, like ICANN09's; side switches (``--rho 0.008``) leave parts unvisited for long.
 
 Ablation (ICANN09 §4): the same run without the reservoir, quadratic SFA on the 17 inputs.
 
@@ -151,17 +148,20 @@ def _washout(text: str) -> int | str:
 
 def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
     """Checks across arguments, before any work."""
-    if args.ticks // args.downsample < MIN_SAMPLES:
-        parser.error(f"argument --ticks: {args.ticks} ticks down-sampled by {args.downsample} "
-                     f"leave {args.ticks // args.downsample} samples; at least {MIN_SAMPLES} "
+    ticks, what = (min(args.ticks, 60_000), " (--quick)") if args.quick else (args.ticks, "")
+    if ticks // args.downsample < MIN_SAMPLES:
+        parser.error(f"argument --ticks: {ticks}{what} ticks down-sampled by {args.downsample} "
+                     f"leave {ticks // args.downsample} samples; at least {MIN_SAMPLES} "
                      "are needed (more ticks or a smaller --downsample)")
-    n_fit = args.ticks * 5 // 6 // args.downsample
+    n_fit, auto = ticks * 5 // 6 // args.downsample, args.washout == "auto"
     washout = (replace(ICANN09, leak=args.leak, spectral_radius=args.spectral_radius,
-                       downsample=args.downsample).transient_updates()
-               if args.washout == "auto" else args.washout)
-    if n_fit - washout < MIN_FIT:
-        parser.error(f"argument --washout: {washout} of the {n_fit} training updates leave "
-                     f"fewer than {MIN_FIT} to fit on (a smaller --washout or more --ticks)")
+                       downsample=args.downsample).transient_updates() if auto else args.washout)
+    if n_fit - washout < MIN_FIT:  # blame the option set (an automatic washout follows them)
+        opt = "washout" if not auto else next((o for o in ("downsample", "ticks") if getattr(
+            args, o) != parser.get_default(o)), "washout")
+        parser.error(f"argument --{opt}: a washout of {washout}{' (auto)' if auto else ''} "
+                     f"leaves fewer than {MIN_FIT} of the {n_fit} training updates of {ticks}"
+                     f"{what} ticks (a smaller --downsample or --washout, or more --ticks)")
     if args.units > args.neurons + 17:
         parser.error(f"argument --units: {args.units} exceeds the {args.neurons + 17} inputs "
                      "of SFA (--neurons + 17 rays)")

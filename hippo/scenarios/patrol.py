@@ -191,5 +191,17 @@ def run(args: argparse.Namespace) -> dict:
     write_metrics(out, metrics, summary=(
         f"patrol ({args.arena}, {args.place_cells} place cells): stopped at "
         f"{metrics['checkpoint_stops_made']} of {metrics['checkpoint_stops_expected']} "
-        f"checkpoint passes; {waits}{shuttle}"))
+        f"checkpoint passes{loops_note(metrics)}; {waits}{shuttle}"))
     return metrics
+
+
+def loops_note(m: dict) -> str:
+    """The loops and stray stops beside the pass count: a patrol that went round a fraction of
+    its loops, or backwards, scores only the passes it made."""
+    text = f" over {m['loops_completed']:.2f} of {m['loops']} loops"
+    if m["extra_stops"] or m["misplaced_stops"]:
+        text += f" ({m['extra_stops']} extra, {m['misplaced_stops']} misplaced stops)"
+    if m["loop_completion"] < 0.9:
+        text += (" - the robot went round backwards" if m["loops_completed"] < 0 else
+                 " - the loops were not completed") + ", so few passes were counted"
+    return text

@@ -121,8 +121,18 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
         args.loaded = _load_robot(args.load)
     except (CorruptFileError, ValueError, TypeError) as e:
         parser.error(f"argument --load: {args.load}: {' '.join(str(e).split())}")
-    check_loaded_options(args, parser, args.loaded["meta"], ("place_cells", "seed",
-                                                              "explore_min", "explore_rho"))
+    meta = dict(args.loaded["meta"])
+    places = args.loaded["agent"].places
+    model = getattr(places, "model", None)
+    if model is not None:   # what the loaded robot says of itself
+        meta["units"] = int(model.params.n_ica)
+        meta["places"] = int(places.n_units)
+    meta["reanchor"] = getattr(places, "relocaliser", None) is not None
+    check_loaded_options(args, parser, meta, ("place_cells", "seed", "explore_min",
+                                              "explore_rho", "units", "places", "reanchor"))
+    if args.teach != parser.get_default("teach"):
+        parser.error("argument --teach: the loaded robot was taught already; leave --teach out "
+                     "with --load")
 
 
 #: what a saved place-preference robot holds, beside the agent, the world and the observation

@@ -342,6 +342,8 @@ def run(args: argparse.Namespace) -> dict:
         f" room cell {paper_room['mean']:.2f} balanced accuracy on the test part, corridor "
         f"cell {cor_cell['mean']:.2f} (leaks 0.11, 0.14); after a kidnapping the room cell is "
         f"right again after " + ("no recovery" if kid != kid else f"{kid:.0f} ticks")
+        + (f" ({metrics['kidnap_unrecovered']} kidnap(s) never recovered, left out of the mean)"
+           if metrics["kidnap_unrecovered"] and kid == kid else "")
         + f" (targets: {TARGETS['room_cell_test_balanced_accuracy']}, "
         f"{TARGETS['kidnap_recovery_ticks']} ticks)" + _selection_line(metrics)))
     return metrics

@@ -114,12 +114,13 @@ class ArenaBuilder:
 
     def landmark(self, name: str, x: float, y: float) -> ArenaBuilder:
         """A named point a scenario can refer to (goal centre, checkpoint, start place)."""
-        self._landmarks[name] = (float(x), float(y))
+        self._landmarks[name] = tuple(float(v) for v in check_finite(f"landmark {name!r}",
+                                                                      (x, y)))
         return self
 
     def start(self, x: float, y: float, heading: float = 0.0) -> ArenaBuilder:
         """The robot's default start pose."""
-        self._start = (float(x), float(y), float(heading))
+        self._start = tuple(float(v) for v in check_finite("start pose", (x, y, heading)))
         return self
 
     def build(self) -> Arena:

@@ -26,8 +26,8 @@ from hippo.tasks.explore import arena_tour
 from hippo.tasks.patrol_report import PASS_RADIUS
 from hippo.tasks.routes import Route
 
-__all__ = ["ARENA_CHECKPOINTS", "HIREL_WAITS", "MIN_WAIT_S", "ROUTE_KINDS", "TOUR_REACH",
-           "check_patrol", "choose_route", "patrol_route", "random_patrol"]
+__all__ = ["ARENA_CHECKPOINTS", "HIREL_WAITS", "MAX_WAIT_S", "MIN_WAIT_S", "ROUTE_KINDS",
+           "TOUR_REACH", "check_patrol", "choose_route", "patrol_route", "random_patrol"]
 
 #: the arenas a patrol runs in, with their default checkpoints (cm): patrol-course's are its
 #: landmarks checkpoint-1..3 on the corridor loop; the others' were placed in distinct parts
@@ -45,6 +45,9 @@ HIREL_WAITS = [24.1, 19.1, 11.6, 16.0]
 #: 0.8 s and never reproduced, 0.5 s never taught (patrol-course, seed 0, --quick); 1.2 s
 #: worked there, and 2 s leaves a margin for learned place cells
 MIN_WAIT_S = 2.0
+#: the longest: the timing battery's longest delay (``SpectralParams.mu_max``, 120 s); a longer
+#: wait is learned as 120 s
+MAX_WAIT_S = 120.0
 #: a shortest route that runs back over itself for longer than this (cm,
 #: :attr:`Route.doubled_length`) gives way to a wall tour through every checkpoint: on the
 #: doubled stretch the pass count cannot tell which way the robot goes (patrol-course,
@@ -92,7 +95,8 @@ def choose_route(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
     and back (a maze's, and its tours, too)."""
     if kind not in ROUTE_KINDS:
         raise ValueError(f"route kind must be one of {', '.join(ROUTE_KINDS)}, got {kind!r}")
-    if kind == "auto" and arena == "patrol-course" and \
+    name = arena.name if isinstance(arena, Arena) else arena   # the built-in one as an Arena too
+    if kind == "auto" and name == "patrol-course" and \
             [tuple(map(float, c)) for c in checkpoints] == ARENA_CHECKPOINTS["patrol-course"]:
         return "course", Route(arenas.loop_waypoints())
     arena_obj = _arena(arena)
@@ -130,9 +134,8 @@ def check_patrol(arena_spec: str | Arena, checkpoints: Sequence[Sequence[float]]
                  waits: Sequence[float], kind: str = "auto") -> Route:
     """Raise ``ValueError`` naming the problem unless the checkpoints lie on free floor of the
     arena (6 cm clear of every wall) that the robot can reach from the arena's start, are
-    reachable from each other and are at least
-    ``2 * PASS_RADIUS`` + 10 cm apart along the route, with one wait per checkpoint; returns
-    the route."""
+    reachable from each other and are at least 40 cm apart along the route, two to four of
+    them with one wait each (``MIN_WAIT_S`` to ``MAX_WAIT_S``); returns the route."""
     return checked_route(arena_spec, checkpoints, waits, kind)[1]
 
 
@@ -142,6 +145,8 @@ def checked_route(arena_spec: str | Arena, checkpoints: Sequence[Sequence[float]
     route)`` (the route is built once for both)."""
     arena = _arena(arena_spec)
     arena_name = arena.name
+    if not 2 <= len(checkpoints) <= 4:
+        raise ValueError(f"a patrol has 2 to 4 checkpoints, got {len(checkpoints)}")
     if len(waits) != len(checkpoints):
         raise ValueError(f"got {len(waits)} waits for {len(checkpoints)} checkpoints; give "
                          "one wait per checkpoint")
@@ -149,6 +154,10 @@ def checked_route(arena_spec: str | Arena, checkpoints: Sequence[Sequence[float]
     if short:
         raise ValueError(f"wait(s) {', '.join(f'{w:g}' for w in short)} s: a checkpoint's wait "
                          f"must be at least {MIN_WAIT_S:g} s (a shorter stop is not reproduced)")
+    long = [float(w) for w in waits if not float(w) <= MAX_WAIT_S]
+    if long:
+        raise ValueError(f"wait(s) {', '.join(f'{w:g}' for w in long)} s: a checkpoint's wait "
+                         f"must be at most {MAX_WAIT_S:g} s (the timing battery's longest delay)")
     xs, ys, home = _home_floor(arena)
     for x, y in checkpoints:
         if not arena.is_free(x, y, 6.0):
@@ -157,7 +166,8 @@ def checked_route(arena_spec: str | Arena, checkpoints: Sequence[Sequence[float]
                              "checkpoint needs 6 cm clear of every wall)")
         if not home[np.argmin(np.abs(xs - x)), np.argmin(np.abs(ys - y))]:
             raise ValueError(f"checkpoint ({x:g}, {y:g}) cannot be reached from the start of "
-                             f"arena {arena_name!r} (it lies inside walls)")
+                             f"arena {arena_name!r} (it lies inside walls, or behind a gap "
+                             "narrower than the robot)")
     route_kind, route = choose_route(arena_spec, checkpoints, kind)
     s = sorted(route.progress(x, y) for x, y in checkpoints)
     gaps = np.diff([*s, s[0] + route.length])
@@ -176,13 +186,22 @@ def random_patrol(arena_spec: str | Arena, n: int, seed: int, *,
     grid), at least 40 cm apart, until a set passes :func:`check_patrol` (40 cm apart along
     its route); waits drawn uniformly from ``waits`` (s, to 0.1 s). For held-out tests of a
     patrol in any arena."""
-    if not 2 <= n <= 4:
+    if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 2 <= n <= 4:
         raise ValueError(f"n must be 2 to 4 checkpoints, got {n!r}")
+    lo, hi = (float(v) for v in waits)
+    if not MIN_WAIT_S <= lo <= hi <= MAX_WAIT_S:
+        raise ValueError(f"waits must be (low, high) with {MIN_WAIT_S:g} <= low <= high <= "
+                         f"{MAX_WAIT_S:g} s, got {tuple(waits)!r}")
+    if not 0.0 <= float(clearance) < 1e6:
+        raise ValueError(f"clearance must be a finite number of cm >= 0, got {clearance!r}")
     arena = _arena(arena_spec)
     rng = np.random.default_rng(check_seed("seed", seed))
     xs, ys, home = _home_floor(arena)
     _, _, roomy = arena.free_grid(clearance)
     i, j = np.nonzero(roomy & home)
+    if len(i) < n:
+        raise ValueError(f"arena {arena.name!r} has {len(i)} points of floor {clearance:g} cm "
+                         f"clear of every wall; {n} checkpoints need more (a smaller clearance)")
     floor = np.column_stack([xs[i], ys[j]])
     for _ in range(tries):
         pick = floor[rng.choice(len(floor), size=n, replace=False)]

@@ -16,6 +16,7 @@ The ground truth goes to the agent only when its place cells are the ground-trut
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -25,7 +26,11 @@ from hippo.sim.world import World
 from hippo.tasks.log import Log
 from hippo.types import Observation, wrap_angle
 
-__all__ = ["Session"]
+__all__ = ["LeashWarning", "Session"]
+
+
+class LeashWarning(UserWarning):
+    """A lead that did not bring the robot to its route's end within its limit."""
 
 
 class Session:
@@ -83,9 +88,18 @@ class Session:
 
     # -- the teacher --------------------------------------------------------------------------
     def lead(self, route: Sequence[Sequence[float]], limit: int = 6000) -> Observation:
-        """Walk the robot on the leash through ``route`` (at most ``limit`` ticks)."""
+        """Walk the robot on the leash through ``route`` (at most ``limit`` ticks). A lead that
+        has not reached the route's end by then drops the leash (a :class:`LeashWarning` says
+        where): it kept pulling through every later phase."""
         self.teacher.lead(route)
-        return self.run(limit, until=lambda o: not self.teacher.leading)
+        obs = self.run(limit, until=lambda o: not self.teacher.leading)
+        if self.teacher.leading:
+            self.teacher.stop_leading()
+            x, y = self.world.truth.pose[:2]
+            warnings.warn(f"the leash was dropped after {limit} ticks with the robot at "
+                          f"({x:.0f}, {y:.0f}), short of the route's end {tuple(route[-1])}",
+                          LeashWarning, stacklevel=2)
+        return obs
 
     def block(self, seconds: float, extra: float = 1.0) -> Observation:
         """Hold the robot where it is for ``seconds`` (the teacher's block), then go on."""

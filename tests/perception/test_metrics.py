@@ -159,3 +159,40 @@ def test_ridge_ceiling_mask_and_errors():
         M.ridge_ceiling(X, cls.astype(float))
     with pytest.raises(ValueError, match="gap"):
         M.ridge_ceiling(X[:100], cls[:100], 3, gap=20, folds=5)
+
+
+def test_recovery_times_refuse_inputs_that_made_every_event_recover_at_once():
+    from hippo.perception.metrics import recovery_times
+
+    never = np.zeros(50, bool)
+    assert np.isnan(recovery_times(never, [10, 20], hold=1)).all()
+    for hold in (0, -3, 2.5, True):
+        with pytest.raises(ValueError, match="hold"):
+            recovery_times(never, [10, 20], hold=hold)
+    with pytest.raises(ValueError, match="boolean"):
+        recovery_times(np.full(50, np.nan), [10])
+    for events in ([-5], [30, 10], [50], [1.5]):
+        with pytest.raises(ValueError, match="events"):
+            recovery_times(np.ones(50, bool), events)
+    assert recovery_times(np.r_[np.zeros(25, bool), np.ones(25, bool)], [10, 30],
+                          hold=5).tolist() == [15.0, 0.0]
+
+
+def test_decoding_accuracy_checks_its_neighbours_labels_and_mapping():
+    from hippo.perception import metrics as M
+
+    rng = np.random.default_rng(0)
+    Y, lab = rng.normal(size=(100, 5)), rng.integers(0, 4, 100)
+    C = M.fit_centroid_decoder(Y, lab, 4)
+    exact, near = M.decoding_accuracy(Y, lab, C, np.eye(4, dtype=bool))
+    assert exact == near <= 1.0
+    with pytest.raises(ValueError, match="square boolean"):
+        M.decoding_accuracy(Y, lab, C, np.eye(4, dtype=int) * 5)   # gave 1.7 "within one step"
+    with pytest.raises(ValueError, match="labels must lie in"):
+        M.decoding_accuracy(Y, lab - 1, C, np.eye(4, dtype=bool))
+    with pytest.raises(ValueError, match="labels must lie in"):
+        M.decoding_accuracy(Y, lab, C, np.eye(2, dtype=bool))
+    for mapping in ([0, 1, 2], [np.nan, 1, 2, 3, 0], [-1, 1, 2, 3, 0]):
+        mapping = np.array(mapping)
+        with pytest.raises(ValueError, match="one location"):
+            M.decoding_accuracy(Y, lab, mapping)

@@ -77,3 +77,13 @@ def test_bad_input(tmp_path):
     bad.write_bytes(b"garbage")
     with pytest.raises(CorruptFileError):
         PlacePrototypes.load(bad)
+
+
+def test_outputs_whose_squared_distances_overflow_are_refused_by_name():
+    # scipy's kmeans2 crashed the interpreter on such data (k-means++ on NaN probabilities)
+    Y = np.random.default_rng(0).normal(size=(500, 4)) * 1e155
+    with pytest.raises(ValueError, match="overflow float64"):
+        PlacePrototypes(PrototypeParams(n_prototypes=5, seed=0)).fit(Y)
+    PlacePrototypes(PrototypeParams(n_prototypes=5, seed=0)).fit(Y * 1e-150)   # rescaled: fine
+    with pytest.raises(ValueError, match=r"max_prototypes \(10\) must be >= n_prototypes \(20\)"):
+        PrototypeParams(n_prototypes=20, max_prototypes=10)

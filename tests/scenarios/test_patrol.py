@@ -69,13 +69,30 @@ def test_a_saved_lesson_patrols_bit_for_bit_like_the_run_that_saved_it(tmp_path)
     # a course that contradicts the saved one, or --save with --load, is one clear error
     for bad in (["--waits", "3,4,5"], ["--arena", "maze"], ["--save", str(tmp_path / "c")],
                 ["--heading-sectors", "2"], ["--place-cells", "ground-truth"],
-                ["--seed", "6"], ["--units", "30"]):
+                ["--seed", "6"], ["--units", "30"], ["--route", "tour"], ["--reanchor"]):
         with pytest.raises(SystemExit):
             run_scenario("patrol", ["--quick", "--load", str(tmp_path / "robot"), *bad,
                                     "--out", str(tmp_path / "d")])
+    # the robot's own unit count (--quick: 16 ICA units) is its value, not its 40 prototypes
+    again = run_scenario("patrol", ["--quick", "--load", str(tmp_path / "robot"), "--units",
+                                    "16", "--out", str(tmp_path / "e")])
+    assert again["checkpoint_stops_made"] == whole["checkpoint_stops_made"]
     with pytest.raises(SystemExit):   # not a patrol lesson
         run_scenario("patrol", ["--quick", "--load", str(tmp_path / "a"),
                                 "--out", str(tmp_path / "d")])
+
+
+def test_the_summary_gives_the_loops_beside_the_passes():
+    from hippo.scenarios.patrol import loops_note
+
+    done = {"loops_completed": 5.0, "loops": 5, "loop_completion": 1.0, "extra_stops": 0,
+            "misplaced_stops": 0}
+    assert loops_note(done) == " over 5.00 of 5 loops"
+    back = {**done, "loops_completed": -0.05, "loop_completion": 0.0, "extra_stops": 32}
+    note = loops_note(back)
+    assert "-0.05 of 5 loops" in note and "32 extra" in note and "backwards" in note
+    assert "not completed" in loops_note({**done, "loops_completed": 0.6,
+                                          "loop_completion": 0.12})
 
 
 def test_the_summary_names_a_route_out_and_back_as_a_known_limitation():

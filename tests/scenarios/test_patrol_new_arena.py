@@ -54,3 +54,40 @@ def test_patrol_helpers_take_an_arena_of_ones_own():
     with pytest.raises(ValueError, match="got a long Arena"):
         from hippo.sim import arenas
         arenas.get(b.build())
+
+
+def test_teach_patrol_names_a_bad_argument_before_any_work():
+    """The third fuzzing pass: each of these failed after the exploration, or never ended."""
+    from hippo.sim import arenas
+
+    arena = _load().alcove_ring()
+    cps = [(60.0, 15.0), (100.0, 82.0)]
+    for kwargs, match in (
+            ({"explore_min": 0}, "explore_min"), ({"explore_min": float("nan")}, "explore_min"),
+            ({"units": 0}, "units"), ({"places": 300}, "places"), ({"side": 1.0}, "side"),
+            ({"side": True}, "side"), ({"heading_sectors": 2.5}, "heading_sectors")):
+        with pytest.raises(ValueError, match=match):
+            teach_patrol(arena, cps, [8.0, 25.0], **kwargs)
+    for waits in ([1e9, 8.0], [float("inf"), 8.0], [500.0, 8.0]):   # hung, failed late, 120 s
+        with pytest.raises(ValueError, match="at most 120 s"):
+            teach_patrol(arena, cps, waits)
+    bare = ArenaBuilder("bare", 200, 100).outer_walls().start(15, 50).build()
+    with pytest.raises(ValueError, match="no reference locations"):
+        teach_patrol(bare, [(40.0, 50.0), (160.0, 50.0)], [8.0, 8.0], place_cells="ground-truth")
+    with pytest.raises(ValueError, match="2 to 4 checkpoints"):
+        check_patrol(arena, [*cps, (170.0, 15.0), (20.0, 82.0), (180.0, 82.0)], [8.0] * 5)
+    # the built-in course passed as an Arena gets the route it gets by name
+    from hippo.tasks.patrol_sets import ARENA_CHECKPOINTS
+
+    course, cps = arenas.get("patrol-course"), ARENA_CHECKPOINTS["patrol-course"]
+    assert choose_route(course, cps)[0] == choose_route("patrol-course", cps)[0] == "course"
+
+
+def test_random_patrol_names_bad_waits_clearance_and_counts():
+    for kwargs, match in (({"waits": (0.5, 1.5)}, "waits"), ({"waits": (30.0, 8.0)}, "waits"),
+                          ({"waits": (float("nan"), 5.0)}, "waits"),
+                          ({"clearance": 500.0}, "clearance")):
+        with pytest.raises(ValueError, match=match):
+            random_patrol("two-rooms", 2, 0, **kwargs)
+    with pytest.raises(ValueError, match="n must be 2 to 4"):
+        random_patrol("two-rooms", 2.5, 0)

@@ -35,6 +35,11 @@ def test_a_saved_robot_runs_the_same_trials(learned, tmp_path):
         run_scenario("place-preference", ["--quick", "--load", str(robot), "--seed", "9",
                                           "--out", str(tmp_path / "s9")])
     assert e.value.code == 2 and not (tmp_path / "s9").exists()
+    # options the snapshot fixes were dropped in silence (--teach 10 ran its 3 lessons)
+    for bad in (["--teach", "10"], ["--units", "8"], ["--places", "5"], ["--reanchor"]):
+        with pytest.raises(SystemExit):
+            run_scenario("place-preference", ["--quick", "--load", str(robot), *bad,
+                                              "--out", str(tmp_path / "bad")])
     back = run_scenario("place-preference", ["--quick", "--load", str(robot),
                                              "--out", str(tmp_path)])
     assert back["loaded_from"] == str(robot) and back["seed"] == m["seed"] == 0

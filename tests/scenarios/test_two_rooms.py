@@ -249,3 +249,13 @@ def test_slowness_ranks_a_slow_sine_before_a_fast_one():
     Y = np.c_[3 * np.sin(2 * np.pi * t / 50), 0.1 * np.sin(2 * np.pi * t / 1000)]
     # Δ of a unit-variance sine of period P is (2π/P)² (up to the discrete difference)
     np.testing.assert_allclose(_slowness(Y), (2 * np.pi / np.array([50, 1000])) ** 2, rtol=0.01)
+
+
+def test_the_summary_says_when_a_kidnap_never_recovered(tmp_path, capsys):
+    # one unit at chance: "right again after 6 ticks" read as a success while one of three
+    # kidnaps never recovered (the mean is over the recovered ones)
+    m = run_scenario("two-rooms", ["--quick", "--n-sfa", "1", "--n-ica", "1", "--no-figures",
+                                   "--out", str(tmp_path)])
+    out = capsys.readouterr().err   # the summary goes to stderr
+    assert m["kidnap_unrecovered"] >= 1
+    assert f"{m['kidnap_unrecovered']} kidnap(s) never recovered" in out

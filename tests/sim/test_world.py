@@ -299,6 +299,15 @@ def test_builder_validation():
     assert b._locations == [(12.5, 10.0), (37.5, 10.0), (12.5, 30.0), (37.5, 30.0)]
 
 
+def test_builder_refuses_a_non_finite_start_or_landmark():
+    # a NaN heading turned the robot's pose NaN in silence (third fuzzing pass)
+    for pose in ((50, 50, math.nan), (50, math.inf, 0.0)):
+        with pytest.raises(ValueError, match="start pose"):
+            ArenaBuilder("b", 100, 100).outer_walls().start(*pose)
+    with pytest.raises(ValueError, match="landmark 'goal'"):
+        ArenaBuilder("b", 100, 100).outer_walls().landmark("goal", math.nan, 3.0)
+
+
 def test_arenas_have_their_labelled_locations():
     assert len(arenas.two_rooms().locations) == 25
     assert len(arenas.maze_e1().locations) == 64

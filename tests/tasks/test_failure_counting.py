@@ -10,7 +10,7 @@ from hippo.sim import arenas
 from hippo.tasks import Route
 from hippo.tasks.deployment import DeploymentParams, StuckWatch, tally_failures
 from hippo.tasks.patrol import ARENA_CHECKPOINTS, check_patrol, patrol_route
-from hippo.tasks.patrol_sets import MIN_WAIT_S
+from hippo.tasks.patrol_sets import MAX_WAIT_S, MIN_WAIT_S
 from hippo.types import Mode
 
 SQUARE = Route([(0, 0), (100, 0), (100, 100), (0, 100)])
@@ -114,4 +114,10 @@ def test_check_patrol_names_the_problem():
     for short in (1.0, float("nan")):
         with pytest.raises(ValueError, match=f"must be at least {MIN_WAIT_S:g} s"):
             check_patrol("patrol-course", ARENA_CHECKPOINTS["patrol-course"], [short, 3.0, 4.0])
+    # beyond the timing battery's longest delay a wait was learned as 120 s (500 s), never
+    # ended (1e9: 5e9 ticks of block) or failed after the exploration (inf)
+    for long in (120.5, 500.0, 1e9, float("inf")):
+        with pytest.raises(ValueError, match=f"must be at most {MAX_WAIT_S:g} s"):
+            check_patrol("patrol-course", ARENA_CHECKPOINTS["patrol-course"], [3.0, long, 4.0])
+    check_patrol("patrol-course", ARENA_CHECKPOINTS["patrol-course"], [3.0, MAX_WAIT_S, 4.0])
     assert arenas.get("two-rooms").is_free(90.0, 20.0, 6.0)

@@ -51,6 +51,18 @@ def test_run_logs_every_tick_under_its_phase_and_stops_at_until(tmp_path):
     assert (tmp_path / "out" / "map.graphml").exists()
 
 
+def test_a_lead_that_runs_out_of_ticks_drops_the_leash_and_says_so():
+    from hippo.tasks.session import LeashWarning
+
+    _, _, s = _session()
+    with pytest.warns(LeashWarning, match="dropped after 10 ticks"):
+        s.lead([(40.0, 15.0), (185.0, 15.0)], limit=10)    # 170 cm: far more than 10 ticks
+    assert not s.teacher.leading                            # it pulled through every later phase
+    x = s.truth.pose[0]
+    s.lead([(x + 10.0, 15.0)], limit=2000)                  # a short lead ends by itself
+    assert not s.teacher.leading
+
+
 def test_the_teacher_block_and_the_kidnap():
     world, agent, s = _session()
     s.run(seconds=4.0)
