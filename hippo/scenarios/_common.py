@@ -19,10 +19,12 @@ from hippo.sim.record import Recording
 
 def prepare_out(out: str | Path) -> Path:
     """Create the output folder and return it as a Path; temporary files that a run killed
-    mid-write left in it are removed (:func:`hippo.io.clean_stale_temps`)."""
+    mid-write left in it are removed (:func:`hippo.io.clean_stale_temps`), and so is an earlier
+    run's ``metrics.json``: a run that fails leaves none, not another run's."""
     path = Path(out)
     path.mkdir(parents=True, exist_ok=True)
     clean_stale_temps(path)
+    (path / "metrics.json").unlink(missing_ok=True)
     return path
 
 

@@ -57,7 +57,10 @@ Phase = PatrolPhase
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_course_arguments(parser)
     parser.add_argument("--hours", type=number(0.1, 1000.0), default=8.0,
-                        help="simulated hours of autonomous patrol (--quick: at most 0.5)")
+                        help="simulated hours of autonomous patrol (--quick: at most 0.5); "
+                             "each segment ends where the route is farthest from every "
+                             "checkpoint, up to a lap later, so a robot that stalls runs over "
+                             "(the hours run are reported)")
     parser.add_argument("--segment-min", type=number(5.0, 600.0), default=30.0,
                         help="tally, health sample and checkpoint every this many simulated "
                              "minutes")

@@ -210,6 +210,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         "delay_s": args.delay,
         "pairings": pairings,
         "seed": args.seed,
+        "noise": args.noise, "jitter": args.jitter,
         "quick": quick,
         "transitions_learned_s": learned,
         "reward_transition_learned": bool(reward_keys),

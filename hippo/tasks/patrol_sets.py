@@ -21,7 +21,7 @@ from scipy import ndimage
 
 from hippo._checks import check_seed
 from hippo.sim import arenas
-from hippo.sim.arena import Arena
+from hippo.sim.arena import Arena, _segment_clear
 from hippo.tasks.explore import arena_tour
 from hippo.tasks.patrol_report import PASS_RADIUS
 from hippo.tasks.routes import Route
@@ -124,10 +124,25 @@ def choose_route(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
 
 def _home_floor(arena: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The arena's free-floor grid ``(xs, ys, mask)``: cells the robot reaches from the start."""
-    xs, ys, free = arena.free_grid(3.7)
+    radius = 3.7
+    xs, ys, free = arena.free_grid(radius)
     parts, _ = ndimage.label(free)
-    return xs, ys, parts == parts[np.argmin(np.abs(xs - arena.start_pose[0])),
-                                  np.argmin(np.abs(ys - arena.start_pose[1]))]
+    home = parts == parts[np.argmin(np.abs(xs - arena.start_pose[0])),
+                          np.argmin(np.abs(ys - arena.start_pose[1]))]
+    # open: from a reachable cell by the arena's edge, a straight line out crosses no wall
+    band = radius + 2.0 * (xs[1] - xs[0] if len(xs) > 1 else 2.0)
+    walls = arena.wall_array()
+    rim = ((xs < band) | (xs > arena.width - band))[:, None] | \
+        ((ys < band) | (ys > arena.height - band))[None, :]
+    for i, j in np.argwhere(home & rim):
+        x, y = float(xs[i]), float(ys[j])
+        for out in ((-1.0, y), (arena.width + 1.0, y), (x, -1.0), (x, arena.height + 1.0)):
+            if abs(out[0] - x) + abs(out[1] - y) < band + 1.0 and \
+                    _segment_clear((x, y), out, walls, 0.0):
+                raise ValueError(f"arena {arena.name!r} is open: the robot can reach its edge "
+                                 f"near ({x:.0f}, {y:.0f}) where no wall stands (close it, "
+                                 "e.g. with ArenaBuilder.outer_walls())")
+    return xs, ys, home
 
 
 def check_patrol(arena_spec: str | Arena, checkpoints: Sequence[Sequence[float]],

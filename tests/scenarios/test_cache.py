@@ -54,3 +54,13 @@ def test_a_damaged_kidnap_cache_is_recorded_again(tmp_path):
         with pytest.warns(UserWarning, match="kidnapped recording .* unusable"):
             out = _recordings(args, arenas.two_rooms(), 1600, 600, 2)
         assert out[2:] == (events, kinds, moved)
+
+
+def test_a_new_run_in_a_folder_removes_the_last_runs_metrics(tmp_path):
+    # a run that failed left the previous run's metrics.json looking like its own
+    from hippo.scenarios._common import prepare_out
+
+    (tmp_path / "metrics.json").write_text('{"seed": 0}')
+    (tmp_path / "keep.png").write_bytes(b"")
+    assert prepare_out(tmp_path) == tmp_path
+    assert not (tmp_path / "metrics.json").exists() and (tmp_path / "keep.png").exists()

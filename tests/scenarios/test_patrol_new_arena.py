@@ -91,3 +91,13 @@ def test_random_patrol_names_bad_waits_clearance_and_counts():
             random_patrol("two-rooms", 2, 0, **kwargs)
     with pytest.raises(ValueError, match="n must be 2 to 4"):
         random_patrol("two-rooms", 2.5, 0)
+
+
+def test_an_arena_left_open_is_named_before_any_work():
+    # the robot drove out of it and the error came late, about a lead's start (fuzzing pass 3)
+    open_box = ArenaBuilder("nowall", 200, 200).box((80, 80, 120, 120)).grid_locations(5, 5) \
+        .start(40, 100, 1.57).build()
+    with pytest.raises(ValueError, match="arena 'nowall' is open"):
+        teach_patrol(open_box, [(40.0, 40.0), (160.0, 160.0)], [8.0, 8.0])
+    gap = ArenaBuilder("gap", 200, 100).outer_walls().build()   # closed: accepted
+    check_patrol(gap, [(40.0, 50.0), (160.0, 50.0)], [8.0, 8.0])

@@ -13,7 +13,9 @@ def test_timing_demo_quick(tmp_path):
     metrics = run_scenario("timing-demo", ["--quick", "--out", str(out), "--seed", "1"])
     for name in ("fig6_timing.png", "reproduction.png", "metrics.json", "run.npz"):
         assert (out / name).stat().st_size > 0
-    assert json.loads((out / "metrics.json").read_text())["delay_s"] == 7.0
+    saved = json.loads((out / "metrics.json").read_text())
+    assert saved["delay_s"] == 7.0
+    assert (saved["noise"], saved["jitter"]) == (0.3, 0.1)   # what the run was (fuzzing pass 3)
     # the place-preference chain was learned through the state layer: still@goal -> sound
     assert metrics["reward_transition_learned"]
     assert abs(metrics["reward_learned_delay_s"] - 7.0) < 0.2
