@@ -55,6 +55,7 @@ from __future__ import annotations
 
 import argparse
 import time
+import warnings
 
 import numpy as np
 
@@ -63,7 +64,7 @@ from hippo.scenarios._common import prepare_out, write_metrics
 from hippo.scenarios._patrol_lesson import add_course_arguments, check_course_args, teach_patrol
 from hippo.sim import arenas
 from hippo.tasks import Route, stops
-from hippo.tasks.patrol import PatrolPhase, pass_report
+from hippo.tasks.patrol import PatrolPhase, PatrolWarning, pass_report
 
 Phase = PatrolPhase
 
@@ -125,7 +126,9 @@ def run(args: argparse.Namespace) -> dict:
     reproduced = lesson.reproduced
     # the learned delays are read before the patrol (which re-learns them)
     learned_waits = course.learned_waits()
-    completed = course.patrol(loops)
+    with warnings.catch_warnings():   # the summary gives the loops (loops_note)
+        warnings.simplefilter("ignore", PatrolWarning)
+        completed = course.patrol(loops)
     longer, shorter, i_adapt, i_adapt_end = course.adapt(waits, arena)
     levels, low, kidnap_stop = course.kidnap()
     obs = s.obs

@@ -45,6 +45,7 @@ from hippo.tasks.patrol import (
     HIREL_WAITS,
     PatrolCourse,
     PatrolPhase,
+    PatrolWarning,
     check_patrol,
     pass_report,
     patrol_route,
@@ -57,8 +58,8 @@ from hippo.tasks.teaching import Experimenter
 __all__ = [
     "ARENA_CHECKPOINTS", "HIREL_WAITS", "LEARNED_SECTORS", "PAUSE_RATE", "PLACE_STATES",
     "AngleLaps", "Experimenter", "LapCounter", "Lesson", "Log", "PatrolCourse", "PatrolPhase",
-    "Route", "Session", "Tour", "check_patrol", "enum_names", "event_arrays", "explore",
-    "lead_from", "learn_map", "make_places", "pass_report", "passes", "patrol_route",
+    "PatrolWarning", "Route", "Session", "Tour", "check_patrol", "enum_names", "event_arrays",
+    "explore", "lead_from", "learn_map", "make_places", "pass_report", "passes", "patrol_route",
     "progress_along", "random_patrol", "route_passes", "stops", "teach_patrol", "wall_side",
     "wall_tour",
 ]

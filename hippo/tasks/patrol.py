@@ -15,6 +15,7 @@ by a checkpoint gave.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Sequence
 from enum import IntEnum
 from typing import Any
@@ -40,7 +41,8 @@ from hippo.types import Mode, StateKind
 
 __all__ = [
     "ARENA_CHECKPOINTS", "HIREL_WAITS", "ROUTE_KINDS", "TOUR_REACH", "PatrolCourse", "PatrolPhase",
-    "check_patrol", "choose_route", "pass_report", "patrol_rounds", "patrol_route", "random_patrol",
+    "PatrolWarning", "check_patrol", "choose_route", "pass_report", "patrol_rounds", "patrol_route",
+    "random_patrol",
 ]
 
 #: a lesson's run from one checkpoint to the next on a wall tour longer than ``DETOUR_RATIO``
@@ -51,6 +53,10 @@ __all__ = [
 #: paths: the robot crosses rooms along their walls, 2-4 x those legs (two-rooms 10, 22)
 DETOUR_RATIO = 1.25
 DETOUR_SLACK = 10.0
+
+
+class PatrolWarning(UserWarning):
+    """A patrol that completed fewer than half its loops."""
 
 
 class PatrolPhase(IntEnum):
@@ -241,7 +247,10 @@ class PatrolCourse:
 
     def patrol(self, loops: int) -> float:
         """Every drive up (:meth:`drives_up`), ``loops`` laps alone; returns the laps
-        completed."""
+        completed. A :class:`PatrolWarning` says when fewer than half were (negative: the robot
+        went round backwards)."""
+        if isinstance(loops, bool) or not isinstance(loops, int | np.integer) or loops < 1:
+            raise ValueError(f"loops must be an integer >= 1, got {loops!r}")
         s = self.s
         self.drives_up()
         s.phase, start_turns = PatrolPhase.PATROL, self.laps()
@@ -252,7 +261,14 @@ class PatrolCourse:
                 s.trial = k
                 s.run(int(self.lap_s / self.dt), until=self.lap_until(end + k))
                 bar.update()
-        return min(self.loop.turns - start_turns, float(loops))
+        laps = min(self.loop.turns - start_turns, float(loops))
+        if laps < 0.5 * loops:
+            warnings.warn(f"the robot completed {laps:.2f} of {loops} loops"
+                          + (", round the route backwards" if laps < 0 else "")
+                          + ": where a corridor lets the wall follower take either wall, the "
+                          "other side may hold (teach_patrol(..., side=...); the patrol "
+                          "tutorial's known limitation)", PatrolWarning, stacklevel=2)
+        return laps
 
     def adapt(self, waits: Sequence[float], arena: Any) -> tuple[float, float, int, int]:
         """A longer block at checkpoint 1, an early leash restart at checkpoint 2, then a loop

@@ -101,3 +101,16 @@ def test_an_arena_left_open_is_named_before_any_work():
         teach_patrol(open_box, [(40.0, 40.0), (160.0, 160.0)], [8.0, 8.0])
     gap = ArenaBuilder("gap", 200, 100).outer_walls().build()   # closed: accepted
     check_patrol(gap, [(40.0, 50.0), (160.0, 50.0)], [8.0, 8.0])
+
+
+def test_a_patrol_that_does_not_go_round_says_so():
+    from hippo.tasks import PatrolWarning
+
+    lesson = teach_patrol(_load().alcove_ring(), [(60.0, 15.0), (100.0, 82.0)], [8.0, 12.0],
+                          explore_min=5.0, place_cells="ground-truth")
+    for bad in (0, -1, 2.5, True):
+        with pytest.raises(ValueError, match="loops must be an integer"):
+            lesson.course.patrol(bad)
+    lesson.session.teacher.block(1e4)          # boxed in: no loop at all
+    with pytest.warns(PatrolWarning, match="completed 0.00 of 1 loops"):
+        assert lesson.course.patrol(1) < 0.5
