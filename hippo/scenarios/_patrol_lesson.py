@@ -237,6 +237,7 @@ def save_lesson(folder: str | Path, lesson: Lesson, args: argparse.Namespace) ->
     s = lesson.session
     meta = {k: _plain(getattr(args, k)) for k in _META}
     meta["route"] = getattr(args, "route", "auto")
+    meta["quick"] = bool(getattr(args, "quick", False))
     model = getattr(lesson.agent.places, "model", None)  # learned cells: their ICA units
     meta.update(seed=int(args.seed),
                 units=int(model.params.n_ica) if model is not None else int(args.units),

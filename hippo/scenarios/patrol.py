@@ -160,7 +160,9 @@ def run(args: argparse.Namespace) -> dict:
         "route_kind": lesson.route_kind,
         "route_winding": loop_route.winding, "wall_side": int(agent.p.wall_side),
         "waits_s": waits, "loops": loops,
-        "quick": quick, "place_units": places.n_units,
+        # a robot taught with --quick stays a smoke test when loaded without it
+        "quick": quick or bool((getattr(args, "loaded", None) or {}).get("meta", {}).get("quick")),
+        "place_units": places.n_units,
         "heading_sectors": int(agent.p.heading_sectors),
         "reanchor": getattr(places, "relocaliser", None) is not None,
         "loaded_from": str(args.load) if getattr(args, "load", None) is not None else None,

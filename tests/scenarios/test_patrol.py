@@ -77,6 +77,10 @@ def test_a_saved_lesson_patrols_bit_for_bit_like_the_run_that_saved_it(tmp_path)
     again = run_scenario("patrol", ["--quick", "--load", str(tmp_path / "robot"), "--units",
                                     "16", "--out", str(tmp_path / "e")])
     assert again["checkpoint_stops_made"] == whole["checkpoint_stops_made"]
+    # a --quick robot loaded without --quick is still a smoke test, and says so
+    full = run_scenario("patrol", ["--load", str(tmp_path / "robot"), "--loops", "1",
+                                   "--out", str(tmp_path / "f")])
+    assert full["quick"] is True
     with pytest.raises(SystemExit):   # not a patrol lesson
         run_scenario("patrol", ["--quick", "--load", str(tmp_path / "a"),
                                 "--out", str(tmp_path / "d")])
