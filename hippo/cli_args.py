@@ -327,6 +327,19 @@ def check_loaded_options(args: argparse.Namespace, parser: argparse.ArgumentPars
                          f"leave {opt} out with --load")
 
 
+def loaded_robot_meta(meta: dict, places: Any) -> dict:
+    """A saved robot's ``meta`` with what its place cells say of themselves: for learned ones
+    ``units`` (the ICA units fitted; patrol snapshots before 2026-11-27 wrote the prototypes'
+    count there) and ``places`` (the prototypes), and for any ``reanchor`` (whether they
+    re-anchor after a lift); for :func:`check_loaded_options`."""
+    meta = dict(meta)
+    model = getattr(places, "model", None)
+    if model is not None:
+        meta["units"], meta["places"] = int(model.params.n_ica), int(places.n_units)
+    meta["reanchor"] = getattr(places, "relocaliser", None) is not None
+    return meta
+
+
 def add_place_cells(parser: argparse.ArgumentParser, *, reanchor: bool = False) -> None:
     """``--place-cells learned|ground-truth`` and ``--[no-]reanchor`` (default ``reanchor``):
     the options every closed-loop task shares."""

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hippo._checks import check_finite
+from hippo._checks import check_finite, check_int
 from hippo.perception.ceiling import Ceiling as Ceiling
 from hippo.perception.ceiling import ridge_ceiling as ridge_ceiling
 from hippo.perception.ceiling import time_blocks as time_blocks
@@ -334,9 +334,7 @@ def recovery_times(correct: np.ndarray, events: np.ndarray, *, hold: int = 5,
     c = np.asarray(correct)
     if c.ndim != 1 or c.dtype != bool:
         raise ValueError(f"correct must be a 1-D boolean series, got {c.dtype} {c.shape}")
-    if isinstance(hold, bool) or int(hold) != hold or hold < 1:
-        raise ValueError(f"hold must be an integer >= 1, got {hold!r}")
-    correct, hold = c, int(hold)
+    correct, hold = c, check_int("hold", hold, lo=1)
     ev = np.asarray(events)
     T = correct.size
     if ev.ndim != 1 or (ev.size and (not np.issubdtype(ev.dtype, np.integer) or ev.min() < 0

@@ -21,6 +21,7 @@ from hippo.cli_args import (
     add_place_cells,
     check_loaded_options,
     integer,
+    loaded_robot_meta,
     number,
     numbers,
     out_dir,
@@ -116,7 +117,7 @@ def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser)
             args.loaded = load_lesson(args.load)
         except (OSError, ValueError) as e:
             parser.error(f"argument --load: {args.load}: {' '.join(str(e).split())}")
-        meta = loaded_meta(args.loaded)
+        meta = loaded_robot_meta(args.loaded["meta"], args.loaded["agent"].places)
         check_loaded_options(args, parser, meta, ("place_cells", "seed", "explore_min", "units",
                                                   "places", "route", "reanchor"))
         for opt, key in (("--arena", "arena"), ("--checkpoints", "checkpoints"),
@@ -216,19 +217,6 @@ def _check_meta(meta: dict) -> None:
         check_patrol(meta["arena"], cps, waits, meta_route(meta))
     except ValueError as e:
         raise ValueError(f"the snapshot's course: {e}") from None
-
-
-def loaded_meta(loaded: dict) -> dict:
-    """A loaded lesson's meta, with what its robot says of itself: ``units``, the ICA units its
-    learned place cells were fitted with (snapshots before 2026-11-27 wrote the prototypes'
-    count there), and ``reanchor``, whether they re-anchor after a lift."""
-    meta = dict(loaded["meta"])
-    places = loaded["agent"].places
-    model = getattr(places, "model", None)
-    if model is not None:
-        meta["units"] = int(model.params.n_ica)
-    meta["reanchor"] = getattr(places, "relocaliser", None) is not None
-    return meta
 
 
 def save_lesson(folder: str | Path, lesson: Lesson, args: argparse.Namespace) -> None:

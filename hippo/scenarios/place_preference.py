@@ -38,6 +38,7 @@ from hippo.cli_args import (
     add_place_cells,
     check_loaded_options,
     integer,
+    loaded_robot_meta,
     number,
     out_dir,
     probability,
@@ -121,13 +122,7 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
         args.loaded = _load_robot(args.load)
     except (CorruptFileError, ValueError, TypeError) as e:
         parser.error(f"argument --load: {args.load}: {' '.join(str(e).split())}")
-    meta = dict(args.loaded["meta"])
-    places = args.loaded["agent"].places
-    model = getattr(places, "model", None)
-    if model is not None:   # what the loaded robot says of itself
-        meta["units"] = int(model.params.n_ica)
-        meta["places"] = int(places.n_units)
-    meta["reanchor"] = getattr(places, "relocaliser", None) is not None
+    meta = loaded_robot_meta(args.loaded["meta"], args.loaded["agent"].places)
     check_loaded_options(args, parser, meta, ("place_cells", "seed", "explore_min",
                                               "explore_rho", "units", "places", "reanchor"))
     if args.teach != parser.get_default("teach"):

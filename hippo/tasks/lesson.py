@@ -15,8 +15,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-import numpy as np
-
+from hippo._checks import check_int
 from hippo.agent import Agent, AgentParams
 from hippo.cognitive_map import DriveParams, LocaliserParams, PlannerParams
 from hippo.sim import World
@@ -50,11 +49,6 @@ class Lesson:
     route_kind: str = "shortest"  # what its route is (hippo.tasks.patrol_sets.choose_route)
 
 
-def _whole(v: object) -> bool:
-    """An integer (Python's or numpy's), not a bool."""
-    return not isinstance(v, bool) and isinstance(v, int | np.integer)
-
-
 def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
                  waits: Sequence[float], *, seed: int = 0, route: str = "auto",
                  place_cells: str = "learned", explore_min: float = 30.0, units: int = 24,
@@ -78,15 +72,15 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
     checkpoints = [(float(x), float(y)) for x, y in checkpoints]
     if place_cells not in ("learned", "ground-truth"):
         raise ValueError(f"place_cells must be 'learned' or 'ground-truth', got {place_cells!r}")
-    if side is not None and (not _whole(side) or side not in (-1, 1)):
+    if side is not None and check_int("side", side) not in (-1, 1):
         raise ValueError(f"side must be -1 (right wall), +1 (left wall) or None, got {side!r}")
     if not 0.1 <= float(explore_min) <= 1e4:
         raise ValueError(f"explore_min must be 0.1 to 10,000 simulated minutes, got "
                          f"{explore_min!r}")
     for name, v, hi in (("units", units, 600), ("places", places, 256),
                         ("heading_sectors", heading_sectors, 360)):
-        if v is not None and (not _whole(v) or not 1 <= v <= hi):
-            raise ValueError(f"{name} must be an integer 1 to {hi}, got {v!r}")
+        if v is not None:
+            check_int(name, v, lo=1, hi=hi)
     if place_cells == "ground-truth" and not len(arena_obj.locations):
         raise ValueError(f"arena {arena_obj.name!r} has no reference locations for ground-truth "
                          "place cells (ArenaBuilder.grid_locations)")

@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from hippo._checks import check_int
 from hippo.progress import Progress
 from hippo.tasks.patrol_report import PASS_RADIUS, pass_report, patrol_rounds
 from hippo.tasks.patrol_sets import (
@@ -249,8 +250,7 @@ class PatrolCourse:
         """Every drive up (:meth:`drives_up`), ``loops`` laps alone; returns the laps
         completed. A :class:`PatrolWarning` says when fewer than half were (negative: the robot
         went round backwards)."""
-        if isinstance(loops, bool) or not isinstance(loops, int | np.integer) or loops < 1:
-            raise ValueError(f"loops must be an integer >= 1, got {loops!r}")
+        check_int("loops", loops, lo=1)
         s = self.s
         self.drives_up()
         s.phase, start_turns = PatrolPhase.PATROL, self.laps()
