@@ -267,9 +267,9 @@ class Brain:
             self.state, self.entered_at, self._entry_pose = ev.winner, self.t, self.pi.pose
             self._entries[ev.winner] = (self.t, self.pi.pose)
             self._ctx_now, self._ctx_before = ev.winner, None
-            if self.kind(ev.winner) == StateKind.PLACE:   # a held stop's place may win at once
-                self.decide.passed_held_stop(ev.winner)
             self.entry_unseen = getattr(self.localiser, "by_anchor", False)   # re-anchored inside
+            if self.kind(ev.winner) == StateKind.PLACE and not self.entry_unseen:
+                self.decide.passed_held_stop(ev.winner)   # a held stop's place may win at once
             self.decide.choose()
         elif ev.changed:
             self._on_event(ev.winner)

@@ -15,8 +15,10 @@ here use it (parameters in :class:`~hippo.brain_params.BrainParams`):
 - re-anchoring after a lift: a robot carried in the middle of a task (a kidnap, a rescue) has
   no anchor; the first stop it passes without making it, because its drive is held, anchors
   the next run-up where that stop was due (entering its place plus the map's delay of the stop;
-  a place that already wins when the robot is put down, or when it re-localises, counts as
-  entered then). Until then soft recognition starts no approach (:mod:`hippo.soft_recognition`).
+  a place that already wins when the robot is put down, or when the map recognises it, counts
+  as entered then; one that a re-anchoring of the place code jumped into does not: the robot
+  may be anywhere in it, or short of it). Until then soft recognition starts no approach
+  (:mod:`hippo.soft_recognition`).
 """
 
 from __future__ import annotations

@@ -527,6 +527,38 @@ def test_a_held_stop_whose_place_wins_as_the_robot_is_put_down_anchors_the_run_u
     assert not brain.decide._reanchor
 
 
+def test_a_held_stop_whose_place_a_re_anchoring_jumps_into_does_not_anchor_the_run_ups():
+    # a place code that re-anchors after the lift jumps into A without the robot entering it:
+    # the robot may be anywhere in A, or short of it (patrol kidnap, tuning seed 24: the jump
+    # won 35 cm short of where the stop's place wins on the laps, the run-ups counted from
+    # there, and the next checkpoint's stop came 31 cm early). Only A entered anchors them
+    from hippo.cognitive_map import LocaliserParams
+
+    brain, run = taught(relocalise=LocaliserParams(max_time=60.0))
+    a = brain.layer.find("place", 0)
+    delay = brain.graph.delay((a, brain.layer.find("still", context=a)))
+    brain.drives.inhibit("sound")
+    brain.decide._inhibited["sound"] = a
+    brain.lifted(keep_drives=True)
+    run.ticks(3, "B", moving=True)             # the stale place: settling
+    run.places.anchored = True
+    assert run.step("B", moving=True).settling
+    run.places.anchored = False
+    run.ticks(round(delay / DT) + 5, "A", moving=True)   # the jump's switch into A
+    assert brain.localiser.by_anchor and brain.state == a
+    assert brain.wait_ended_at is None and brain.decide._reanchor   # no anchor from the jump
+    run.ticks(10, "B", moving=True)
+    for _ in range(20):                        # until A wins again (1 cm a tick)
+        if brain.state == a:
+            break
+        run.step("A", moving=True)
+    entered = brain.odometer
+    run.ticks(round(delay / DT) + 5, "A", moving=True)   # A entered, passed: held
+    assert brain.decide.mode != Mode.WAIT
+    assert brain.wait_ended_at == pytest.approx(entered + delay / DT, abs=1.5)
+    assert not brain.decide._reanchor
+
+
 def test_only_a_wait_where_the_anchor_said_anchors_the_next_run_up():
     # two checkpoints a -> b -> a: b's run-up 50 cm after a's wait, a's 100 cm after b's
     brain = Brain(Stub(), drives={"a": DriveParams(), "b": DriveParams()},

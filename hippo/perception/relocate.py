@@ -41,6 +41,17 @@ checkpoints). But the robot, deciding sooner, then chose a high-drive checkpoint
 preference's lift to a start (tuning seeds 0-4): 34 of 59 rewarded paths within 1.5 x the
 shortest against 43 of 60; a match made on the west start before the goal zone turned the robot
 round, and the south start stayed at 3.3 x.
+
+2026-11-27: the place a re-anchoring jumps into no longer re-anchors the run-ups as if the robot
+had entered it (:mod:`hippo.runups`; on tuning seed 24 the jump won 35 cm short of where that
+place wins on the laps, and the next stop came 31 cm early). With it, kidnap choices with the
+option: tuning 36/40 (default course 0-39) and 28/30 (random 0-29), against 34/40 and 28/30
+before the change and 37/40 and 26/30 without the option; fresh held-out seeds 270-289, run once:
+18/20 and 19/20 (re-localised after 18.5 and 35 ticks median), against 17/20 and 19/20 before
+the change and 18/20 and 19/20 without the option (71 and 90.5 ticks). A jump onto another
+place of the same corridor (tuning seed 30: 50 cm on, checkpoint 1's stretch) still makes a
+stop in the wrong place. By the rule fixed before these runs (the default course's tuning
+kidnaps at least those without the option) it stays off by default.
 """
 
 from __future__ import annotations
