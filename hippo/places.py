@@ -36,6 +36,13 @@ class PlaceSource(Protocol):
     # optional: ``lifted()``, called by the brain when the robot is picked up and put down
 
 
+def _fitted_units(model: Any) -> int:
+    """The number of outputs ``model`` was fitted with (its parameters may have been changed by
+    ``set_params`` since, which changes no fitted part)."""
+    std = getattr(model, "output_std_", None)
+    return int(model.params.n_ica) if std is None else int(np.shape(std)[0])
+
+
 class LearnedPlaceCells:
     """Place cells learned by RC-SFA-ICA from the robot's own distance sensors (the default).
 
@@ -58,13 +65,13 @@ class LearnedPlaceCells:
             raise ValueError("LearnedPlaceCells needs a fitted RCSFAICA model")
         if prototypes is not None:
             prototypes._check_fitted()
-            d, n_ica = prototypes.centres_.shape[1], int(model.params.n_ica)  # type: ignore[union-attr]
+            d, n_ica = prototypes.centres_.shape[1], _fitted_units(model)
             if d != n_ica:
                 raise ValueError(f"prototypes were fitted on {d}-dimensional outputs; the "
                                  f"model has n_ica={n_ica}")
         self.model = model
         self.prototypes = prototypes
-        self.n_units = prototypes.n_units if prototypes is not None else int(model.params.n_ica)
+        self.n_units = prototypes.n_units if prototypes is not None else _fitted_units(model)
         if relocaliser is not None and not isinstance(relocaliser, SequenceRelocaliser):
             raise TypeError(f"relocaliser must be a SequenceRelocaliser, got {relocaliser!r}")
         if relocaliser is not None and (model.params.downsample > 1 or model.params.slow_pool):

@@ -46,6 +46,12 @@ def save_model(model: Any, path: str | os.PathLike) -> Path:
                               "output_std": model.output_std_, "output_peak": model.output_peak_}
     if model.reservoir_ is not None:
         arrays.update(model.reservoir_.to_arrays())
+    try:   # a file that would not load is never written (set_params after fit)
+        _from_arrays(type(model), dict(arrays))
+    except (ValueError, TypeError, KeyError, IndexError, OverflowError) as exc:
+        raise ValueError(f"cannot save this {type(model).__name__}: its parameters no longer "
+                         f"describe its fit ({exc}); set_params after fit changes the "
+                         f"parameters, not the fitted model: fit again first") from None
     return save_npz(path, arrays)
 
 

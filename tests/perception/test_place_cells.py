@@ -82,6 +82,29 @@ def test_save_load_round_trip_exact(fitted, tmp_path):
     np.testing.assert_array_equal(loaded.step(U[0]), model.step(U[0]))
 
 
+@pytest.mark.parametrize(("change", "message"), [
+    ({"n_ica": 2}, r"ica_whitening must have shape"),
+    ({"leak": 0.3}, r"leak does not match"),
+    ({"spectral_radius": 0.5}, r"spectral radius"),
+])
+def test_a_model_whose_parameters_changed_after_fit_is_not_saved(change, message, tmp_path):
+    """set_params after fit changes the parameters, not the fit (scikit-learn's contract): the
+    outputs keep the fitted width, and save refuses a file that load would refuse."""
+    from hippo.places import LearnedPlaceCells
+
+    U = _walk(T=600, n=8)
+    model = RCSFAICA(n_reservoir=40, n_sfa=4, n_ica=4, ica_restarts=1).fit(U)
+    model.set_params(**change)
+    assert model.transform(U[:5]).shape == (5, 4)
+    assert LearnedPlaceCells(model).n_units == 4     # what each step returns
+    with pytest.raises(ValueError, match=f"parameters no longer describe its fit.*{message}"):
+        model.save(tmp_path / "pc.npz")
+    assert not (tmp_path / "pc.npz").exists()
+    model.set_params(**{k: getattr(RCSFAICAParams(n_reservoir=40, n_sfa=4, n_ica=4,
+                                                  ica_restarts=1), k) for k in change})
+    assert RCSFAICA.load(model.save(tmp_path / "pc.npz")).params == model.params
+
+
 def test_corrupt_file(fitted, tmp_path):
     model, _ = fitted
     bad = tmp_path / "bad.npz"
