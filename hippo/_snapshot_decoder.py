@@ -5,6 +5,7 @@ else is a :class:`~hippo.io.CorruptFileError`."""
 from __future__ import annotations
 
 import collections
+import enum
 import importlib
 import math
 import types
@@ -138,6 +139,14 @@ class _Decoder:
             return dt if tag == "$dtype" else dt.type
         if tag == "$class":
             return _import_class(e["$class"])
+        if tag == "$enum":  # (a snapshot of before enums were tagged holds their plain value)
+            cls = _import_class(e["$enum"])
+            if not issubclass(cls, enum.Enum):
+                raise CorruptFileError(f"{cls.__qualname__} is not an enum")
+            try:
+                return cls(self.dec(e["v"]))
+            except (ValueError, TypeError):
+                raise CorruptFileError(f"{e['v']!r:.80} is not a {cls.__qualname__}") from None
         if tag == "$custom":
             cls = _import_class(e["$custom"])
             restore = getattr(cls, "__snapshot_restore__", None)

@@ -148,15 +148,29 @@ MAX_SEEDS = 1000
 MAX_SEED = 2**32 - 1
 
 
+def plain_digits(text: str) -> bool:
+    """Is ``text`` a whole number in plain ASCII digits (no sign, ``_``, spaces or other
+    scripts' digits, all of which ``int()`` accepts)?"""
+    return text.isascii() and text.isdigit()
+
+
+def _seed(text: str) -> int:
+    text = text.strip()
+    if not plain_digits(text):
+        raise ValueError(text)
+    return int(text)
+
+
 def seed_ranges(text: str) -> list[int]:
     """Explicit seeds as ranges and lists, ``100-119`` or ``0-9,15``: distinct, non-negative,
-    at most :data:`MAX_SEEDS` of them (counted before any list is built)."""
+    at most :data:`MAX_SEEDS` of them (counted before any list is built). Seeds are plain ASCII
+    digits: ``10_0`` or ``٣`` is refused, not read as another number."""
     seeds: list[int] = []
     try:
         for part in str(text).split(","):
             a, sep, b = part.strip().partition("-")
-            lo = int(a)
-            hi = int(b) if sep else lo
+            lo = _seed(a)
+            hi = _seed(b) if sep else lo
             if lo < 0 or hi < lo or hi > MAX_SEED:
                 raise ValueError
             if len(seeds) + hi - lo + 1 > MAX_SEEDS:
@@ -166,8 +180,8 @@ def seed_ranges(text: str) -> list[int]:
             seeds.extend(range(lo, hi + 1))
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"seeds are integers in [0, {MAX_SEED}] as ranges and lists (100-119, 0-9,15), "
-            f"got {text!r}") from None
+            f"seeds are integers in [0, {MAX_SEED}] in plain digits 0-9, as ranges and lists "
+            f"(100-119, 0-9,15), got {text!r}") from None
     if len(set(seeds)) != len(seeds):
         raise argparse.ArgumentTypeError(f"{text!r} repeats a seed")
     return seeds

@@ -5,7 +5,8 @@ with its place cells, prototypes, state layer, timing batteries and weights, tra
 drives, planner and random generators, or any one of those parts — into a folder:
 
 ``state.json``   the object graph as standard JSON (no NaN tokens): each hippo object as its class
-                 and attributes, containers and numbers as tagged JSON values, shared objects and
+                 and attributes, containers and numbers as tagged JSON values, enum members
+                 (``Mode``, ``StateKind``) as their class and value, shared objects and
                  arrays written once and referred to by number, random generators by their
                  bit-generator state, networkx graphs by their nodes and edges;
 ``arrays.npz``   every numpy array, by number (``allow_pickle=False``);
@@ -28,6 +29,7 @@ exchange one trained part with other tools; use a snapshot to stop and resume a 
 from __future__ import annotations
 
 import collections
+import enum
 import hashlib
 import json
 import math
@@ -71,6 +73,10 @@ class _Encoder:
         return r
 
     def enc(self, obj: Any, path: str) -> Any:
+        if isinstance(obj, enum.Enum):  # before str and int: an IntEnum is an int too
+            _check_class(type(obj), path)
+            return {"$enum": f"{type(obj).__module__}:{type(obj).__qualname__}",
+                    "v": self.enc(obj.value, f"{path}.value")}
         if obj is None or isinstance(obj, bool | str):
             return obj
         if isinstance(obj, int) and not isinstance(obj, np.integer):

@@ -12,14 +12,16 @@ Results
     one file per finished cell, written atomically by the client as soon as the cell comes
     back: scenario, seed, parameters, status (``ok`` / ``failed``), attempts, seconds, worker,
     the error of a failed cell, and the scenario's metrics. A rerun skips cells whose file says
-    ``ok`` (resumable) and runs failed ones again.
+    ``ok`` (resumable) and runs failed ones again; a damaged file (not JSON, wrong types, or a
+    seed or parameters that are not its cell's) is run again too, with a warning naming it.
 ``OUT/cells/<cell id>/``
     the scenario's own output folder (figures, metrics.json; on a remote cluster it is written
     on the worker, so put ``OUT`` on a shared file system to keep them).
 ``OUT/results.csv`` (and ``results.parquet`` with ``parquet=True``)
     one row per cell, parameters and flattened metrics (``a.b`` for nested ones) as columns.
 ``OUT/summary.png``
-    a chosen metric, mean ± sd over seeds, per parameter combination.
+    a chosen metric, mean ± sd over seeds, per parameter combination (removed, not left from an
+    earlier sweep, when no figure is made: ``figure=False`` or a metric that is no number).
 
 Faults
 ------
@@ -57,9 +59,16 @@ try:  # the optional extra hippo[sweep]
     from distributed.diagnostics.plugin import SchedulerPlugin
 except ImportError:  # pragma: no cover - checked by run_sweep with a clear message
     SchedulerPlugin = object  # type: ignore[assignment,misc]
-from hippo.io import atomic_write_text, load_json, save_figure, save_json
+from hippo.io import CorruptFileError, atomic_write_text, load_json, save_figure, save_json
 from hippo.progress import Progress
-from hippo.sweep_cells import Cell, CellArgumentError, check_cells, grid, scenario_task
+from hippo.sweep_cells import (
+    Cell,
+    CellArgumentError,
+    check_cells,
+    grid,
+    load_cell_record,
+    scenario_task,
+)
 
 __all__ = ["Cell", "CellArgumentError", "SweepResult", "check_cells", "grid", "run_sweep",
            "scenario_task"]
@@ -176,10 +185,12 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
     if len(set(ids)) != len(ids):
         raise ValueError("the grid lists the same cell twice")
     result = SweepResult(out)
+    records: dict[str, dict[str, Any]] = {}
     todo = []
     for c in cells:
-        path = out / "cells" / f"{c.id}.json"
-        if path.exists() and load_json(path).get("status") == "ok":
+        rec = _finished(out / "cells" / f"{c.id}.json", c)
+        if rec is not None and rec["status"] == "ok":
+            records[c.id] = rec
             result.skipped += 1
         else:
             todo.append(c)
@@ -194,24 +205,24 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
             client, own_cluster = _connect(scheduler, n_workers(workers))
             own_client = client
         try:
-            _execute(client, todo, out, task, int(retries), result, as_completed)
+            _execute(client, todo, out, task, int(retries), result, as_completed, records)
         finally:
             if own_client is not None:
                 own_client.close()
             if own_cluster is not None:
                 own_cluster.close()
-    records = [load_json(out / "cells" / f"{i}.json") for i in ids
-               if (out / "cells" / f"{i}.json").exists()]
     names = list(dict.fromkeys(n for c in cells for n, _ in c.params))
-    result.rows = [_row(r, names) for r in records]
-    result.failed = [r["cell"] for r in records if r["status"] != "ok"]
+    result.rows = [_row(records[i], names) for i in ids if i in records]
+    result.failed = [r["cell"] for r in result.rows if r["status"] != "ok"]
+    # a summary.png of an earlier sweep never stays beside this table: replaced or removed
+    (out / "summary.png").unlink(missing_ok=True)
     _write_table(result, parquet)
     if figure and result.rows:
         from hippo.plots.sweep import plot_sweep_summary
 
         try:
             fig, _ = plot_sweep_summary(result.rows, names, metric=metric)
-        except ValueError as exc:  # a metric no cell has: the results stand, no figure
+        except ValueError as exc:  # a metric no cell has, or not a number: no figure
             warnings.warn(f"no summary figure: {exc}", stacklevel=2)
         else:
             save_figure(fig, out / "summary.png", dpi=120)
@@ -221,8 +232,22 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
     return result
 
 
+def _finished(path: Path, cell: Cell) -> dict[str, Any] | None:
+    """The checked record of ``cell`` at ``path`` (:func:`~hippo.sweep_cells.load_cell_record`),
+    or None when there is none; a damaged one is run again, with a warning naming the file."""
+    if not path.exists():
+        return None
+    try:
+        return load_cell_record(path, cell)
+    except CorruptFileError as exc:
+        warnings.warn(f"the sweep cell file is unusable ({exc}): running the cell again",
+                      stacklevel=3)
+        return None
+
+
 def _execute(client: Any, todo: Sequence[Cell], out: Path, task: Callable, retries: int,
-             result: SweepResult, as_completed: Callable) -> None:
+             result: SweepResult, as_completed: Callable,
+             records: dict[str, dict[str, Any]]) -> None:
     budgets = _blas_budgets(client)
     if not client.run_on_scheduler(_has_counter):
         client.register_plugin(_StartCounter(), name=PLUGIN_NAME)
@@ -241,7 +266,8 @@ def _execute(client: Any, todo: Sequence[Cell], out: Path, task: Callable, retri
                 err = f.exception()
                 rec = _record(c, "failed", 0, None, f"{type(err).__name__}: {err}")
             rec["attempts"] = max(1, client.run_on_scheduler(_starts_on).get(f.key, 1))
-            save_json(out / "cells" / f"{c.id}.json", rec)
+            path = save_json(out / "cells" / f"{c.id}.json", rec)
+            records[c.id] = load_json(path)   # as a later run reads it (NaN as null ...)
             result.ran += 1
             progress.update()
     finally:

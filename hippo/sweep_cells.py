@@ -17,7 +17,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-__all__ = ["Cell", "CellArgumentError", "check_cells", "grid", "scenario_task"]
+from hippo.io import CorruptFileError, load_json
+
+__all__ = ["Cell", "CellArgumentError", "check_cells", "grid", "load_cell_record",
+           "scenario_task"]
 
 
 @dataclass(frozen=True)
@@ -112,3 +115,41 @@ def scenario_task(cell: Cell, out: str) -> dict[str, Any]:
             raise RuntimeError(f"the scenario exited ({exc.code})") from None
 
 
+def load_cell_record(path: Path, cell: Cell) -> dict[str, Any]:
+    """The record a sweep wrote for ``cell`` at ``path``, checked like hippo's other loaders
+    (they trust nothing): a JSON object of the right types whose scenario, seed, parameters and
+    options are the cell's own (a file under another cell's id is not this cell's result).
+    Anything else raises :class:`~hippo.io.CorruptFileError` saying what is wrong."""
+    rec = load_json(path)
+    why = _record_problem(rec, cell)
+    if why:
+        raise CorruptFileError(f"{path}: {why}")
+    return rec
+
+
+def _record_problem(rec: Any, cell: Cell) -> str:
+    """What is wrong with ``rec`` as ``cell``'s record ("" if nothing)."""
+    if not isinstance(rec, dict):
+        return f"holds a {type(rec).__name__}, not a cell record"
+    kinds = {"cell": str, "scenario": str, "seed": int, "params": dict, "extra": list,
+             "status": str, "attempts": int, "error": str, "worker": str, "metrics": dict}
+    for key, kind in kinds.items():
+        v = rec.get(key)
+        if not isinstance(v, kind) or isinstance(v, bool):
+            return f"{key} must be a {kind.__name__}, got {v!r:.60}"
+    seconds = rec.get("seconds")
+    if seconds is not None and (isinstance(seconds, bool) or not isinstance(seconds, int | float)):
+        return f"seconds must be a number or null, got {seconds!r:.60}"
+    if rec["status"] not in ("ok", "failed"):
+        return f"status must be ok or failed, got {rec['status']!r:.60}"
+    if rec["attempts"] < 1:
+        return f"attempts must be >= 1, got {rec['attempts']}"
+    if not all(isinstance(k, str) for k in rec["metrics"]):
+        return "metrics must be keyed by names"
+    mine = {"cell": cell.id, "scenario": cell.scenario, "seed": cell.seed,
+            "params": dict(cell.params), "extra": list(cell.extra)}
+    for key, want in mine.items():
+        if rec[key] != want:
+            return (f"its {key} is {rec[key]!r:.80}, the cell's {want!r:.80} (the file "
+                    "belongs to another cell, or was edited)")
+    return ""

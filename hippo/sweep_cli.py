@@ -10,7 +10,6 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from hippo.cli_args import Parser, integer, out_dir, seed_ranges
-from hippo.io import load_json
 from hippo.sweep import CellArgumentError, grid, run_sweep
 
 __all__ = ["sweep_main"]
@@ -54,9 +53,12 @@ def sweep_main(argv: Sequence[str]) -> int:
     known = {s.lstrip("-") for act in parser._actions for s in act.option_strings}
     for item in a.param:
         name, values = item[0].lstrip("-"), item[1:]
-        if name not in known or name in ("out", "seed", "save"):
-            ap.error(f"--param {name}: not an option of scenario {a.scenario!r} "
-                     f"(choose from: {', '.join(sorted(known - {'out', 'seed', 'h', 'help'}))})")
+        if name in ("save", "load"):
+            ap.error(f"--param {name}: a sweep runs every cell from scratch, into its own "
+                     "folder (no snapshot is saved or loaded)")
+        if name not in known or name in ("out", "seed"):
+            ap.error(f"--param {name}: not an option of scenario {a.scenario!r} (choose from: "
+                     f"{', '.join(sorted(known - {'out', 'seed', 'save', 'load', 'h', 'help'}))})")
         if not values:
             ap.error(f"--param {name} needs at least one value")
         if name in params:
@@ -68,19 +70,28 @@ def sweep_main(argv: Sequence[str]) -> int:
     # options after -- go to every cell alike: none may set what the sweep sets per cell
     for tok in extra:
         opt = tok.split("=", 1)[0]
-        name = opt.lstrip("-")
         if not opt.startswith("--"):
             continue
+        name = _full_name(opt.lstrip("-"), known)
         if name in ("seed", "seeds", "out"):
             ap.error(f"{opt} after --: the sweep sets each cell's seed and output folder "
                      "(use hippo sweep's --seeds and --out)")
         if name == "save":
             ap.error(f"{opt} after --: every cell would write the same snapshot folder")
+        if name == "load":
+            ap.error(f"{opt} after --: every cell would run the snapshot's robot, made with "
+                     "the snapshot's seed, whatever the cell's seed (a sweep runs each cell "
+                     "from scratch)")
         if name in params:
             ap.error(f"{opt} after -- is also a --param of the sweep: give its values there")
     if a.parquet and not all(importlib.util.find_spec(m) for m in ("pandas", "pyarrow")):
         ap.error("--parquet needs pandas and pyarrow (pip install pandas pyarrow); they are "
                  "not installed")
+    from hippo.plots.sweep import BOOKKEEPING, numeric_metrics
+
+    if a.metric in BOOKKEEPING or a.metric in params:
+        ap.error(f"--metric {a.metric}: a column the sweep writes itself (its cells' "
+                 "bookkeeping or a --param), not a metric of the scenario")
     cells = grid(a.scenario, a.seeds, params, extra)
     out = Path(a.out or f"out/sweep-{a.scenario}")
     try:  # run_sweep parses every cell's options before anything runs (check_cells)
@@ -92,14 +103,26 @@ def sweep_main(argv: Sequence[str]) -> int:
         ap.error(str(exc))
     print(f"{len(cells)} cells: {res.ran} run, {res.skipped} already done, "
           f"{len(res.failed)} failed; table {out / 'results.csv'}")
-    missing = a.metric is not None and res.rows and not any(a.metric in r for r in res.rows)
+    have = numeric_metrics(res.rows, list(params))
+    missing = a.metric is not None and bool(res.rows) and a.metric not in have
     if missing:
-        have = sorted({k for r in res.rows for k, v in r.items()
-                       if isinstance(v, int | float) and not isinstance(v, bool)})
-        print(f"hippo sweep: no summary figure: no cell has the metric {a.metric!r} (the "
-              f"table has: {', '.join(have)})", file=sys.stderr)
-    for cid in res.failed:
-        rec = load_json(out / "cells" / f"{cid}.json")
-        print(f"  FAILED {cid} (seed {rec['seed']}, {rec['params']}) after {rec['attempts']} "
-              f"attempt(s): {rec['error']}")
+        what = (f"the metric {a.metric!r} is not a number in any finished cell"
+                if any(a.metric in r for r in res.rows) else
+                f"no cell has the metric {a.metric!r}")
+        print(f"hippo sweep: no summary figure: {what} (numeric metrics: "
+              f"{', '.join(have) or 'none'})", file=sys.stderr)
+    for r in res.rows:
+        if r["cell"] in res.failed:
+            given = {n: r[n] for n in params}
+            print(f"  FAILED {r['cell']} (seed {r['seed']}, {given}) after {r['attempts']} "
+                  f"attempt(s): {r['error']}")
     return 0 if res.ok and not missing else 1
+
+
+def _full_name(name: str, known: set[str]) -> str:
+    """The option ``name`` stands for: argparse also takes a unique prefix (``--lo`` for
+    ``--load``), so the checks of the options after ``--`` look through it."""
+    if name in known:
+        return name
+    longer = [k for k in known if k.startswith(name)]
+    return longer[0] if len(longer) == 1 else name

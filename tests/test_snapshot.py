@@ -228,3 +228,46 @@ def test_an_interrupted_save_leaves_no_folder_it_made(tmp_path, monkeypatch):
     # an old snapshot partly overwritten is kept (not ours to delete) and refused on load
     with pytest.raises(CorruptFileError):
         load_snapshot(tmp_path / "old")
+
+
+def test_enums_come_back_as_enums_and_old_plain_values_still_load(tmp_path):
+    """Fourth fuzzing pass: an IntEnum (Mode) or str enum (StateKind) was stored as its bare
+    value and came back a plain int / str (``agent.mode.name`` failed after a resume), and
+    same_state did not notice."""
+    import re
+    import signal
+
+    from hippo.places import GroundTruthPlaceCells
+    from hippo.types import Mode, StateKind
+
+    arena = arenas.get("two-rooms")
+    world = World(arena)
+    agent = Agent(GroundTruthPlaceCells(arena.locations))
+    obs = world.observe()
+    for _ in range(50):
+        obs = world.step(agent.step(obs, world.truth))
+    back = load_snapshot(save_snapshot(agent, tmp_path / "robot"), Agent)
+    assert type(back.mode) is Mode and back.mode.name == agent.mode.name
+    assert type(back.last_tick.mode) is Mode and same_state(agent, back)
+    back.mode = int(back.mode)             # equal, but not the same state
+    assert back.mode == agent.mode and not same_state(agent, back)
+
+    d = Drives({"a": DriveParams()})
+    d.tags = {StateKind.STILL: [Mode.WAIT, StateKind.PLACE], "plain": (3, "place")}
+    back = load_snapshot(save_snapshot(d, tmp_path / "d"))
+    assert back.tags == d.tags and same_state(d, back)
+    key, = (k for k in back.tags if k != "plain")
+    assert type(key) is StateKind and [type(v) for v in back.tags[key]] == [Mode, StateKind]
+    # a snapshot written before enums were tagged (bare values) loads as it always did
+    _rewrite_state(tmp_path / "d", lambda t: re.sub(r'\{"\$enum":"[^"]+","v":("?\w+"?)\}',
+                                                    r"\1", t))
+    old = load_snapshot(tmp_path / "d")
+    assert old.tags == d.tags and type(old.tags["still"][0]) is int
+    # a damaged enum is refused; an enum from outside hippo is not stored
+    save_snapshot(d, tmp_path / "d")
+    _rewrite_state(tmp_path / "d", lambda t: t.replace('"v":3}', '"v":9}', 1))
+    with pytest.raises(CorruptFileError, match="not a Mode"):
+        load_snapshot(tmp_path / "d")
+    d.tags = signal.Signals.SIGINT
+    with pytest.raises(SnapshotError, match=r"Drives\.tags"):
+        save_snapshot(d, tmp_path / "e")

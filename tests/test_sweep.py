@@ -42,6 +42,11 @@ def square_task(cell: Cell, out: str) -> dict:
             "trace": [1, 2, 3]}
 
 
+def labelled_task(cell: Cell, out: str) -> dict:
+    """A cell with a numeric metric and a text one."""
+    return {"value": float(cell.seed), "label": f"seed {cell.seed}"}
+
+
 def slow_task(cell: Cell, out: str) -> dict:
     time.sleep(1.5)
     return {"value": float(cell.seed)}
@@ -79,6 +84,26 @@ def test_sweep_seeds_are_checked_like_a_scenarios():
         with pytest.raises(argparse.ArgumentTypeError):
             seed_ranges(bad)
     assert len(seed_ranges(f"1-{MAX_SEEDS}")) == MAX_SEEDS
+
+
+def test_seeds_are_plain_ascii_digits(capsys):
+    """Fourth fuzzing pass: int() also reads "10_0", "+3" and other scripts' digits, so
+    --seeds 10_0 ran the one seed 100 (--seeds 100 is a count) and --seeds ٣ three runs."""
+    import argparse
+
+    from hippo import cli
+    from hippo.scenarios._common import parse_seeds
+
+    for bad in ("10_0", "1_000", "\u0663", "+3", "1-1_0", "0,\uff15", "3-\u0665"):
+        for parse in (seed_ranges, parse_seeds):
+            with pytest.raises(argparse.ArgumentTypeError, match="plain digits"):
+                parse(bad)
+    assert parse_seeds(" 100 ") == 100 and seed_ranges(" 1 - 2 ,5") == [1, 2, 5]
+    for argv in (["sweep", "timing-demo", "--seeds", "10_0"],
+                 ["run", "two-rooms", "--seeds", "\u0663"]):
+        with pytest.raises(SystemExit) as exc:
+            cli.main(argv)
+        assert exc.value.code == 2 and "argument --seeds" in capsys.readouterr().err
 
 
 def test_blas_budget_never_oversubscribes():
@@ -190,6 +215,84 @@ def test_cli_refuses_a_grid_the_options_after_dashes_would_override(tmp_path, ca
             sweep_main(patrol + args)
         assert exc.value.code == 2 and says in capsys.readouterr().err
     assert not (tmp_path / "p").exists() and not (tmp_path / "r").exists()
+
+
+def test_cli_refuses_a_snapshot_for_every_cell(tmp_path, capsys):
+    # "-- --load SNAP" ran the snapshot's robot (its seed) in every cell, whatever the seed
+    # the cell was named and tabled with (fourth fuzzing pass)
+    patrol = ["patrol", "--seeds", "0-1", "--out", str(tmp_path / "p")]
+    for args, says in ((["--", "--quick", "--load", str(tmp_path / "r")], "--load after --"),
+                       (["--", "--quick", f"--load={tmp_path / 'r'}"], "--load after --"),
+                       (["--", "--loa", str(tmp_path / "r")], "--loa after --"),
+                       (["--", "--sav", str(tmp_path / "r")], "--sav after --"),
+                       (["--param", "load", "a", "b"], "--param load"),
+                       (["--metric", "status"], "--metric status"),
+                       (["--metric", "seconds"], "--metric seconds")):
+        with pytest.raises(SystemExit) as exc:
+            sweep_main(patrol + args)
+        assert exc.value.code == 2 and says in capsys.readouterr().err
+    assert not (tmp_path / "p").exists()
+
+
+def test_a_damaged_cell_file_is_run_again_with_a_warning(tmp_path, client):
+    """Fourth fuzzing pass: a truncated cell file stopped the sweep, a wrong-typed one crashed
+    it, and a file whose parameters were not its cell's was put in the table as that cell."""
+    import json
+    import warnings
+
+    cells = grid("demo", [0, 1, 2, 3, 4], {"gain": ["2"]})
+    run_sweep(cells, tmp_path, client=client, task=square_task)
+    files = [tmp_path / "cells" / f"{c.id}.json" for c in cells]
+    good = json.loads(files[0].read_text())
+    files[0].write_text('{"status": "ok"')                               # truncated
+    files[1].write_text(json.dumps({**good, "metrics": "fine"}))          # wrong type
+    other = {**good, "params": {"gain": "3"}, "metrics": {"value": 12345.0}}
+    files[2].write_text(json.dumps({**other, "cell": cells[2].id, "seed": 2}))  # edited
+    files[3].write_text("[1, 2]")                                        # not a record
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        res = run_sweep(cells, tmp_path, client=client, task=square_task)
+    said = [str(w.message) for w in caught if "sweep cell file" in str(w.message)]
+    assert len(said) == 4 and all(cells[i].id in m for i, m in enumerate(said))
+    assert "running the cell again" in said[0] and "gain" in said[2]
+    assert res.ok and res.ran == 4 and res.skipped == 1
+    assert sorted(r["value"] for r in res.rows) == [0.0, 2.0, 4.0, 6.0, 8.0]
+    assert all(r["gain"] == "2" for r in res.rows)
+    rows = list(csv.DictReader(open(tmp_path / "results.csv")))
+    assert "12345.0" not in {r["value"] for r in rows}
+    for i, f in enumerate(files):
+        assert load_json(f)["metrics"]["value"] == 2.0 * i   # written again, whole
+
+
+def test_a_metric_that_is_no_number_leaves_no_stale_figure(tmp_path, client, capsys,
+                                                           monkeypatch):
+    """Fourth fuzzing pass: --metric of a text column exited 0 with no figure and kept the
+    summary.png of an earlier sweep beside the new results.csv."""
+    import hippo.sweep_cli as sweep_cli
+
+    cells = grid("demo", [0, 1], {"gain": ["2"]})
+    run_sweep(cells, tmp_path, client=client, task=labelled_task)
+    assert (tmp_path / "summary.png").exists()
+    with pytest.warns(UserWarning, match="no summary figure: metric 'label' is not a numeric"):
+        res = run_sweep(cells, tmp_path, client=client, task=labelled_task, metric="label")
+    assert res.ok and (tmp_path / "results.csv").exists()
+    assert not (tmp_path / "summary.png").exists()   # no figure of another sweep left
+    run_sweep(cells, tmp_path, client=client, task=labelled_task)
+    run_sweep(cells, tmp_path, client=client, task=labelled_task, figure=False)
+    assert not (tmp_path / "summary.png").exists()
+
+    def on_the_test_cluster(cells, out, **kw):
+        kw.pop("workers"), kw.pop("scheduler")
+        return run_sweep(cells, out, client=client, task=labelled_task, **kw)
+
+    monkeypatch.setattr(sweep_cli, "run_sweep", on_the_test_cluster)
+    code = sweep_main(["timing-demo", "--seeds", "0-1", "--out", str(tmp_path / "c"),
+                       "--metric", "label"])
+    err = capsys.readouterr().err
+    assert code == 1 and "'label' is not a number" in err and "numeric metrics: value" in err
+    assert sweep_main(["timing-demo", "--seeds", "0-1", "--out", str(tmp_path / "c"),
+                       "--metric", "value"]) == 0
+    assert (tmp_path / "c" / "summary.png").exists()
 
 
 def test_parquet_without_pandas_is_refused_before_any_cell_runs(tmp_path, capsys):

@@ -15,14 +15,16 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-__all__ = ["numeric_metrics", "plot_sweep_summary"]
+__all__ = ["BOOKKEEPING", "numeric_metrics", "plot_sweep_summary"]
 
-_BOOKKEEPING = {"cell", "scenario", "seed", "status", "attempts", "seconds", "worker", "error"}
+#: the columns of a sweep's table about its cells, not measured by them (never a metric)
+BOOKKEEPING = frozenset({"cell", "scenario", "seed", "status", "attempts", "seconds", "worker",
+                         "error"})
 
 
 def numeric_metrics(rows: Sequence[Mapping[str, Any]], params: Sequence[str]) -> list[str]:
     """Metric columns holding numbers in at least one successful row, in table order."""
-    skip = _BOOKKEEPING | set(params)
+    skip = BOOKKEEPING | set(params)
     names: dict[str, None] = {}
     for r in rows:
         if r.get("status") != "ok":

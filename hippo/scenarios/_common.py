@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo.cli_args import MAX_SEEDS, out_dir, seed_ranges
+from hippo.cli_args import MAX_SEEDS, out_dir, plain_digits, seed_ranges
 from hippo.io import CorruptFileError, clean_stale_temps, save_json
 from hippo.sim.record import Recording
 
@@ -76,7 +76,7 @@ def parse_seeds(text: str) -> list[int] | int:
     an int) or explicit seeds as ranges and lists, ``100-119`` or ``0-9,15`` (a list); at most
     :data:`~hippo.cli_args.MAX_SEEDS` runs either way."""
     s = str(text).strip()
-    if s.isdigit():
+    if plain_digits(s):
         n = int(s)
         if n < 1:
             raise argparse.ArgumentTypeError(f"--seeds must be >= 1 or a list, got {text!r}")
