@@ -354,6 +354,28 @@ def loaded_robot_meta(meta: dict, places: Any) -> dict:
     return meta
 
 
+#: the options that shape only learned place cells (ground-truth cells ignore them)
+LEARNED_ONLY = ("units", "places", "reanchor")
+
+
+def check_ground_truth_options(args: argparse.Namespace, parser: argparse.ArgumentParser,
+                               place_cells: str | None = None) -> None:
+    """With ground-truth place cells (``place_cells``, default ``args.place_cells``), an option
+    of :data:`LEARNED_ONLY` set away from its default is refused, naming it: ground-truth cells
+    ignore it, and ``--place-cells ground-truth --units 7`` ran in silence as if it were left
+    out. A parser that lacks the option (default None) checks nothing for it."""
+    if (place_cells or getattr(args, "place_cells", None)) != "ground-truth":
+        return
+    given = [key for key in LEARNED_ONLY if hasattr(args, key)
+             and parser.get_default(key) is not None
+             and getattr(args, key) != parser.get_default(key)]
+    if given:
+        opts = ", ".join("--" + key.replace("_", "-") for key in given)
+        parser.error(f"argument {opts}: only for learned place cells; leave "
+                     f"{'it' if len(given) == 1 else 'them'} out with --place-cells "
+                     "ground-truth")
+
+
 def add_place_cells(parser: argparse.ArgumentParser, *, reanchor: bool = False) -> None:
     """``--place-cells learned|ground-truth`` and ``--[no-]reanchor`` (default ``reanchor``):
     the options every closed-loop task shares."""

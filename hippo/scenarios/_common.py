@@ -25,7 +25,36 @@ def prepare_out(out: str | Path) -> Path:
     path.mkdir(parents=True, exist_ok=True)
     clean_stale_temps(path)
     (path / "metrics.json").unlink(missing_ok=True)
+    _BEFORE[path.resolve()] = _files(path)
     return path
+
+
+#: the files each output folder held when :func:`prepare_out` prepared it, so that the
+#: closing line names only what the run wrote (not a figure an earlier run left)
+_BEFORE: dict[Path, dict[str, tuple[int, int, int]]] = {}
+
+
+def _files(path: Path) -> dict[str, tuple[int, int, int]]:
+    """The files directly in ``path``, each with its inode, modification time and size."""
+    out = {}
+    for p in path.iterdir():
+        if p.is_file():
+            st = p.stat()
+            out[p.name] = (st.st_ino, st.st_mtime_ns, st.st_size)
+    return out
+
+
+def written_files(out: str | Path) -> str:
+    """What the run wrote into ``out`` since :func:`prepare_out` (every file there if it was
+    not prepared so): ``metrics.json``, the other files by name, the PNGs counted as figures."""
+    path = Path(out)
+    before = _BEFORE.get(path.resolve(), {})
+    new = sorted(n for n, v in _files(path).items() if before.get(n) != v)
+    names = ["metrics.json"] + [n for n in new if n != "metrics.json" and not n.endswith(".png")]
+    figures = sum(n.endswith(".png") for n in new)
+    if figures:
+        names.append(f"{figures} figure{'s' if figures > 1 else ''}")
+    return ", ".join(names)
 
 
 def write_metrics(out: Path, metrics: dict[str, Any], *, announce: bool = True,
@@ -39,9 +68,19 @@ def write_metrics(out: Path, metrics: dict[str, Any], *, announce: bool = True,
         if metrics.get("quick"):
             print("--quick: a smoke test with shortened settings; its numbers are not results",
                   file=sys.stderr)
-        print(f"results written to {Path(out).resolve()} (metrics.json, figures, run.npz)",
+        print(f"results written to {Path(out).resolve()} ({written_files(out)})",
               file=sys.stderr)
     return path
+
+
+def smoke_test(args: argparse.Namespace, loaded: dict | None = None) -> bool:
+    """Whether a run is a smoke test: ``--quick``, or a robot loaded with ``--load`` (``loaded``,
+    default ``args.loaded``) that was taught with ``--quick``, as its snapshot's meta records:
+    a robot taught briefly stays a smoke test when loaded without ``--quick``."""
+    if loaded is None:
+        loaded = getattr(args, "loaded", None)
+    meta = (loaded or {}).get("meta") or {}
+    return bool(getattr(args, "quick", False)) or bool(meta.get("quick"))
 
 
 def sfa_cutoff(text: str) -> float | str:
@@ -54,6 +93,18 @@ def check_leak_groups(args: argparse.Namespace, parser: argparse.ArgumentParser)
     if args.neurons < len(args.leak):
         parser.error(f"argument --neurons: {args.neurons} neuron(s) cannot hold the "
                      f"{len(args.leak)} groups of --leak (one group of neurons per leak rate)")
+
+
+def check_sfa_inputs(parser: argparse.ArgumentParser, option: str, k: int, neurons: int,
+                     slow_pool: float = 0.0, what: str = "") -> None:
+    """``k`` SFA units (``option``, ``what`` says where ``k`` came from) need as many SFA
+    inputs: the reservoir's ``neurons`` and the 8 sensors, twice that with a slow pool
+    (:mod:`hippo.perception.slow_pool` appends its running mean); refused before any work."""
+    n_in = (int(neurons) + 8) * (2 if slow_pool else 1)
+    if k > n_in:
+        parser.error(f"argument {option}: {k}{what} exceeds the {n_in} inputs of SFA "
+                     f"({neurons} neurons + 8 sensors"
+                     + (", twice that with the slow pool" if slow_pool else "") + ")")
 
 
 def mean_sd(values: list[float]) -> tuple[float, float]:

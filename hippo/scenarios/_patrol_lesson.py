@@ -19,6 +19,7 @@ from hippo.cli_args import (
     UNITS,
     WAIT_S,
     add_place_cells,
+    check_ground_truth_options,
     check_loaded_options,
     integer,
     loaded_robot_meta,
@@ -107,8 +108,10 @@ def heading_sectors(args: argparse.Namespace) -> int:
 
 def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
     """The checkpoints lie in free space of the arena, are reachable from each other and are
-    at least 40 cm apart along the route; one wait per checkpoint (:func:`check_patrol`)."""
+    at least 40 cm apart along the route; one wait per checkpoint (:func:`check_patrol`);
+    no option of learned place cells with ground-truth ones."""
     args.loaded = None
+    check_ground_truth_options(args, parser)
     if getattr(args, "load", None) is not None:
         if getattr(args, "save", None) is not None:
             parser.error("argument --save: not allowed with --load (the loaded robot is "

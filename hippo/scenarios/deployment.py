@@ -34,7 +34,7 @@ from hippo.cli_args import number
 from hippo.io import save_figure, save_json
 from hippo.progress import Progress
 from hippo.resume import Checkpoints
-from hippo.scenarios._common import prepare_out, write_metrics
+from hippo.scenarios._common import prepare_out, smoke_test, write_metrics
 from hippo.scenarios._patrol_lesson import (
     add_course_arguments,
     check_course_args,
@@ -69,7 +69,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "killed); without it a run starts afresh")
 
 
-check_args = check_course_args
+def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
+    """The course's checks, and no ``--save`` with ``--resume``: a resumed run continues from
+    its checkpoint without teaching, so it had no robot to save and wrote nothing."""
+    if getattr(args, "resume", False) and getattr(args, "save", None) is not None:
+        parser.error("argument --save: not allowed with --resume (a resumed run teaches no "
+                     "robot to save); save with the run that teaches it")
+    check_course_args(args, parser)
 
 
 def _meta(args: argparse.Namespace, hours: float, units: int) -> dict:
@@ -80,7 +86,9 @@ def _meta(args: argparse.Namespace, hours: float, units: int) -> dict:
             "places": int(args.places), "route": getattr(args, "route", "auto"),
             "heading_sectors": heading_sectors(args), "reanchor": bool(args.reanchor),
             "hours": float(hours),
-            "segment_min": float(args.segment_min), "quick": bool(args.quick)}
+            "segment_min": float(args.segment_min),
+            # a robot taught with --quick (--load) stays a smoke test when loaded without it
+            "quick": smoke_test(args)}
 
 
 def run(args: argparse.Namespace) -> dict:

@@ -60,7 +60,7 @@ import warnings
 import numpy as np
 
 from hippo.cli_args import integer
-from hippo.scenarios._common import prepare_out, write_metrics
+from hippo.scenarios._common import prepare_out, smoke_test, write_metrics
 from hippo.scenarios._patrol_lesson import add_course_arguments, check_course_args, teach_patrol
 from hippo.sim import arenas
 from hippo.tasks import Route, stops
@@ -161,7 +161,7 @@ def run(args: argparse.Namespace) -> dict:
         "route_winding": loop_route.winding, "wall_side": int(agent.p.wall_side),
         "waits_s": waits, "loops": loops,
         # a robot taught with --quick stays a smoke test when loaded without it
-        "quick": quick or bool((getattr(args, "loaded", None) or {}).get("meta", {}).get("quick")),
+        "quick": smoke_test(args),
         "place_units": places.n_units,
         "heading_sectors": int(agent.p.heading_sectors),
         "reanchor": getattr(places, "relocaliser", None) is not None,

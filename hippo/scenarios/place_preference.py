@@ -36,6 +36,7 @@ from hippo.cli_args import (
     PLACES,
     UNITS,
     add_place_cells,
+    check_ground_truth_options,
     check_loaded_options,
     integer,
     loaded_robot_meta,
@@ -47,7 +48,7 @@ from hippo.cli_args import (
 from hippo.cognitive_map import DriveParams, LocaliserParams, PlannerParams
 from hippo.io import CorruptFileError
 from hippo.progress import Progress
-from hippo.scenarios._common import prepare_out, write_metrics
+from hippo.scenarios._common import prepare_out, smoke_test, write_metrics
 from hippo.scenarios._meta_checks import check_number, check_option, check_whole
 from hippo.sim import World, arenas
 from hippo.snapshot import load_snapshot, save_snapshot
@@ -111,8 +112,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
-    """--load: a readable place-preference snapshot, and not together with --save."""
+    """--load: a readable place-preference snapshot, and not together with --save; no option
+    of learned place cells with ground-truth ones (given, or the loaded robot's)."""
     args.loaded = None
+    check_ground_truth_options(args, parser)
     if getattr(args, "load", None) is None:
         return
     if getattr(args, "save", None) is not None:
@@ -123,6 +126,7 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
     except (CorruptFileError, ValueError, TypeError) as e:
         parser.error(f"argument --load: {args.load}: {' '.join(str(e).split())}")
     meta = loaded_robot_meta(args.loaded["meta"], args.loaded["agent"].places)
+    check_ground_truth_options(args, parser, meta["place_cells"])
     check_loaded_options(args, parser, meta, ("place_cells", "seed", "explore_min",
                                               "explore_rho", "units", "places", "reanchor"))
     if args.teach != parser.get_default("teach"):
@@ -266,7 +270,9 @@ def run(args: argparse.Namespace) -> dict:
         "place_cells": place_cells, "seed": seed, "delay_s": args.delay,
         "loaded_from": str(args.load) if loaded is not None else None,
         "start_facing": args.start_facing,
-        "quick": quick, "explore_min": explore_min, "place_units": places.n_units,
+        # a robot taught with --quick stays a smoke test when loaded without it
+        "quick": smoke_test(args, loaded), "explore_min": explore_min,
+        "place_units": places.n_units,
         "reanchor": getattr(places, "relocaliser", None) is not None,
         "rewarded_trials": len(rew),
         "rewarded_successes": int(sum(bool(r.get("success")) for r in rew)),

@@ -45,13 +45,14 @@ from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
 from hippo.io import save_figure
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
 from hippo.perception import metrics as M
-from hippo.perception.unit_count import fit_for_world
+from hippo.perception.unit_count import UnitCountParams, fit_for_world
 from hippo.progress import Progress
 from hippo.scenarios._common import (
     add_cache_argument,
     add_seeds_argument,
     cached_recording,
     check_leak_groups,
+    check_sfa_inputs,
     mean_sd,
     prepare_out,
     seed_list,
@@ -134,6 +135,16 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
             and len(args.seeds) < args.arenas:
         parser.error(f"argument --arenas: {args.arenas} flats need as many seeds; --seeds "
                      f"gives {len(args.seeds)}")
+    # the unit counts against the SFA input (--quick: at most 150 neurons), as _one_flat fits
+    n, neurons = args.n_rooms, min(args.neurons, 150) if args.quick else args.neurons
+    k, what = ((UnitCountParams().probe, " (the probe fit of --units auto)")
+               if args.units == "auto" else (args.units, "") if args.units
+               else (2 * n, " (the default: 2 per room)"))
+    check_sfa_inputs(parser, "--units", k, neurons, args.slow_pool, what)
+    k = DECODER_PER_ROOM * n if args.decoder_features is None else args.decoder_features
+    check_sfa_inputs(parser, "--decoder-features", k, neurons, args.slow_pool,
+                     "" if args.decoder_features is not None
+                     else f" (the default: {DECODER_PER_ROOM} per room)")
 
 
 def _seeds(args: argparse.Namespace) -> list[int]:

@@ -64,3 +64,22 @@ def test_a_new_run_in_a_folder_removes_the_last_runs_metrics(tmp_path):
     (tmp_path / "keep.png").write_bytes(b"")
     assert prepare_out(tmp_path) == tmp_path
     assert not (tmp_path / "metrics.json").exists() and (tmp_path / "keep.png").exists()
+
+
+def test_the_closing_line_names_only_the_files_the_run_wrote(tmp_path, capsys):
+    # it said "(metrics.json, figures, run.npz)" whatever was written: rooms writes no
+    # run.npz, --no-figures no figure; a figure an earlier run left is not this run's
+    from hippo.scenarios._common import prepare_out, write_metrics
+
+    (tmp_path / "old.png").write_bytes(b"x")
+    (tmp_path / "run.npz").write_bytes(b"x")
+    out = prepare_out(tmp_path)
+    (out / "place_cells.npz").write_bytes(b"y")
+    write_metrics(out, {"quick": False})
+    assert capsys.readouterr().err.strip().endswith("(metrics.json, place_cells.npz)")
+    out = prepare_out(tmp_path)
+    (out / "a.png").write_bytes(b"1")
+    (out / "b.png").write_bytes(b"2")
+    (out / "run.npz").write_bytes(b"new")
+    write_metrics(out, {})
+    assert capsys.readouterr().err.strip().endswith("(metrics.json, run.npz, 2 figures)")

@@ -106,3 +106,39 @@ def test_success_rate_is_the_share_of_passes_served_whatever_else_failed():
     assert _metrics({"waits": [5.0, 8.0]}, {"segments": [seg], "health0": health,
                                             "reproduced": 1.0, "learned": [5.0, 8.0]},
                     SimpleNamespace(t=1332.0), 1.0)["success_rate"] == 0.0
+
+
+def test_save_with_resume_is_refused_before_any_work(tmp_path, capsys):
+    # the resumed run teaches no robot, so --save wrote nothing and the exit status was 0
+    with pytest.raises(SystemExit) as e:
+        run_scenario("deployment", [*ARGS, "--resume", "--save", str(tmp_path / "robot"),
+                                    "--out", str(tmp_path / "out")])
+    assert e.value.code == 2 and not (tmp_path / "out").exists()
+    assert "argument --save: not allowed with --resume" in capsys.readouterr().err
+
+
+def test_a_robot_taught_with_quick_stays_a_smoke_test_when_loaded_without_it():
+    from hippo.runner import parse_scenario_args
+    from hippo.scenarios.deployment import _meta
+
+    args, _ = parse_scenario_args("deployment", ["--hours", "1"])
+    assert _meta(args, 1.0, 24)["quick"] is False
+    args.loaded = {"meta": {"quick": True}}   # what --load of a --quick lesson holds
+    assert _meta(args, 1.0, 24)["quick"] is True
+
+
+@pytest.mark.parametrize("scenario", ["deployment", "patrol", "place-preference"])
+def test_learned_place_cell_options_are_refused_with_ground_truth_cells(scenario, capsys):
+    # --units, --places and --reanchor shape learned cells only: with ground truth they were
+    # dropped in silence (metrics.json said "place_units": 30, "reanchor": false)
+    from hippo.runner import parse_scenario_args
+
+    with pytest.raises(SystemExit) as e:
+        parse_scenario_args(scenario, ["--place-cells", "ground-truth", "--units", "7",
+                                       "--places", "9", "--reanchor"])
+    assert e.value.code == 2
+    assert "argument --units, --places, --reanchor: only for learned place cells" in \
+        capsys.readouterr().err
+    # left at their defaults (given or not) they are fine; learned cells take them
+    parse_scenario_args(scenario, ["--place-cells", "ground-truth", "--no-reanchor"])
+    parse_scenario_args(scenario, ["--units", "7", "--places", "9", "--reanchor"])

@@ -47,6 +47,10 @@ def test_a_saved_robot_runs_the_same_trials(learned, tmp_path):
                 "extinction_still_s", "states", "transitions", "simulated_s"):
         assert back[key] == m[key], key
     assert back["wall_s"] < m["wall_s"]  # no exploration, fit or teaching
+    # a --quick robot loaded without --quick is still a smoke test ("quick": false before)
+    full = run_scenario("place-preference", ["--load", str(robot), "--trials", "1",
+                                             "--extinction", "0", "--out", str(tmp_path / "f")])
+    assert full["quick"] is True and full["explore_min"] == 20.0
     # a folder that is not a place-preference robot is refused before any work
     other = tmp_path / "other"
     from hippo.snapshot import save_snapshot

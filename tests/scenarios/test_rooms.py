@@ -47,7 +47,27 @@ def test_rooms_a_flat_whose_training_part_stays_in_one_room_says_why_it_has_no_s
         m = run_scenario("rooms", ["--quick", "--n-rooms", "2", "--no-figures",
                                    "--out", str(tmp_path)])
     assert m["flats"][0]["rooms_scored"] == 0 and np.isnan(m["room_cell_mean"])
-    assert "0 of 2 rooms scored" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "0 of 2 rooms scored" in err
+    # rooms writes no run.npz, and --no-figures no figure: the closing line says so
+    assert err.strip().endswith("(metrics.json)")
+
+
+@pytest.mark.parametrize("argv, option", [
+    (["--neurons", "2", "--slow-pool", "0", "--n-rooms", "6"], "--units: 12"),
+    (["--neurons", "2", "--slow-pool", "0", "--units", "20"], "--units: 20"),
+    (["--neurons", "2", "--units", "auto"], "--units: 24"),
+    (["--neurons", "2", "--slow-pool", "0", "--n-rooms", "2"], "--decoder-features: 12"),
+    (["--neurons", "600", "--slow-pool", "0", "--units", "200"], "--units: 200"),  # quick: 150
+])
+def test_rooms_unit_counts_are_checked_against_the_sfa_input_before_any_work(
+        argv, option, tmp_path, capsys):
+    # the default --units (2 per room) or a given one above --neurons + 8 sensors (twice that
+    # with the slow pool) failed after the recording, naming n_sfa, with exit status 1
+    with pytest.raises(SystemExit) as e:
+        run_scenario("rooms", ["--quick", *argv, "--out", str(tmp_path / "x")])
+    assert e.value.code == 2 and not (tmp_path / "x").exists()
+    assert f"argument {option} " in capsys.readouterr().err
 
 
 def test_rooms_arguments():

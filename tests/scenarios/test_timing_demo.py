@@ -30,3 +30,17 @@ def test_timing_demo_quick(tmp_path):
     arrays = load_npz(out / "run.npz", required=["rewarded_prediction", "delays_s"])
     assert np.array_equal(arrays["delays_s"], [2.0, 7.0, 20.0])
     assert arrays["extinction_prediction"].max() > 0.5
+
+
+def test_the_longest_delays_give_no_warning_about_the_demos_own_trials(tmp_path):
+    # --delays 100 ended the demo's probe and extinction trials after 200 s, beyond the
+    # battery's 120 s, and DelayRangeWarning advised raising SpectralParams.mu_max
+    import warnings
+
+    from hippo.timing import DelayRangeWarning
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", DelayRangeWarning)
+        m = run_scenario("timing-demo", ["--quick", "--delays", "100", "--reproductions", "1",
+                                         "--pairings", "2", "--out", str(tmp_path)])
+    assert abs(m["reproduction"]["100"]["mean_error_pct"]) < 3.0
