@@ -19,11 +19,11 @@ def test_rooms_quick(tmp_path):
     flat = m["flats"][0]
     assert len(flat["room_cell_balanced_accuracy"]) == 3
     # seed 0, quick (9000 ticks, 150 neurons, slow pool 50): room cells 0.74 (chance 0.5),
-    # decoder over rooms (the 18 slowest features) 0.85 (chance 0.33; the 6 units: 0.76),
+    # decoder over rooms (the 36 slowest features) 0.85 (chance 0.33; the 6 units: 0.76),
     # ceiling 0.79; without the pool 0.61, 0.56, 0.70
     assert 0.65 <= m["room_cell_mean"] <= 1.0
     assert 0.75 <= m["decoder_balanced_accuracy"] <= 1.0
-    assert flat["decoder_features"] == 18
+    assert flat["decoder_features"] == 36
     assert 0.65 <= m["ceiling_room_mean"] <= 1.0
     assert flat["kidnap_events"] >= 1 and m["kidnap_unrecovered"] == 0
 
@@ -57,7 +57,7 @@ def test_rooms_a_flat_whose_training_part_stays_in_one_room_says_why_it_has_no_s
     (["--neurons", "2", "--slow-pool", "0", "--n-rooms", "6"], "--units: 12"),
     (["--neurons", "2", "--slow-pool", "0", "--units", "20"], "--units: 20"),
     (["--neurons", "2", "--units", "auto"], "--units: 24"),
-    (["--neurons", "2", "--slow-pool", "0", "--n-rooms", "2"], "--decoder-features: 12"),
+    (["--neurons", "2", "--slow-pool", "0", "--decoder-features", "11"], "--decoder-features: 11"),
     (["--neurons", "600", "--slow-pool", "0", "--units", "200"], "--units: 200"),  # quick: 150
 ])
 def test_rooms_unit_counts_are_checked_against_the_sfa_input_before_any_work(
@@ -68,6 +68,14 @@ def test_rooms_unit_counts_are_checked_against_the_sfa_input_before_any_work(
         run_scenario("rooms", ["--quick", *argv, "--out", str(tmp_path / "x")])
     assert e.value.code == 2 and not (tmp_path / "x").exists()
     assert f"argument {option} " in capsys.readouterr().err
+
+
+def test_the_default_decoder_reads_at_most_the_slow_features_sfa_has(tmp_path):
+    # 12 per room is 36 for three rooms; 2 neurons and 8 sensors give SFA 10 inputs: the
+    # default reads all 10 instead of refusing an option the user never gave
+    m = run_scenario("rooms", ["--quick", "--neurons", "2", "--slow-pool", "0", "--no-ceiling",
+                               "--no-figures", "--out", str(tmp_path / "x")])
+    assert m["flats"][0]["decoder_features"] == 10
 
 
 def test_rooms_arguments():
@@ -131,12 +139,12 @@ def test_select_scoring_skips_a_room_the_training_part_never_entered():
 
 def test_the_decoder_reads_more_slow_features_than_the_cells_have(tmp_path):
     """The nearest centroid does not change under ICA's rotation of whitened slow features, so
-    the decoder over rooms reads the 6 n slowest (quick seed 0: 0.85 against 0.76 for the 6
+    the decoder over rooms reads the 12 n slowest (quick seed 0: 0.85 against 0.76 for the 6
     units of the cells, which do not change); --decoder-features 0 reads the cells' units."""
     many = run_scenario("rooms", ["--quick", "--no-ceiling", "--no-figures",
                                   "--out", str(tmp_path / "a")])
     few = run_scenario("rooms", ["--quick", "--no-ceiling", "--no-figures",
                                  "--decoder-features", "0", "--out", str(tmp_path / "b")])
-    assert (many["flats"][0]["decoder_features"], few["flats"][0]["decoder_features"]) == (18, 6)
+    assert (many["flats"][0]["decoder_features"], few["flats"][0]["decoder_features"]) == (36, 6)
     assert many["room_cell_mean"] == few["room_cell_mean"]
     assert many["decoder_balanced_accuracy"] > few["decoder_balanced_accuracy"] + 0.03
