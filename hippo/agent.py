@@ -17,6 +17,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from hippo._checks import check_observation
 from hippo.brain import Brain, BrainParams, Tick
 from hippo.cognitive_map import DriveParams
@@ -95,6 +97,8 @@ class Agent:
         ``motor-explore``, ``motor-steer``).
     """
 
+    _last_tick: int | None = None   # (a snapshot saved before the clock check has none)
+
     def __init__(self, places: PlaceSource, *, drives: Mapping[str, DriveParams] | None = None,
                  params: AgentParams | None = None, sensors: str | SensorModel = "ir8",
                  robot: RobotParams | None = None, seed: int = 0) -> None:
@@ -109,6 +113,7 @@ class Agent:
                            occlusion=self.motor.avoid, seed=seed)
         self.last_tick: Tick | None = None
         self._last_t = -math.inf  # the clock must run forward (check_observation)
+        self._last_tick = None  # ... at BrainParams.dt per tick (_check_clock)
 
     @property
     def p(self) -> AgentParams:
@@ -130,10 +135,32 @@ class Agent:
         """Perceive, learn, decide and act for one tick; returns wheel speeds (cm/s).
 
         ``truth`` (``World.truth``) is needed only by ground-truth place cells."""
-        ir, self._last_t = check_observation(obs, self.sensors.n, self._last_t)
+        last_t = self._last_t
+        ir, self._last_t = check_observation(obs, self.sensors.n, last_t)
+        self._check_clock(getattr(obs, "tick", None), last_t)
         tick = self.brain._step(obs, truth, ir)
         command = self.motor.act(obs, tick)
         if command.gave_up:
             self.brain.abandon()
         self.last_tick = tick
         return command.wheels
+
+    def _check_clock(self, tick: Any, last_t: float) -> None:
+        """Refuse a world whose clock runs at another step than the brain's ``dt``: the drives,
+        time cells and learned delays integrate ``BrainParams.dt`` on every tick, so a
+        ``World(dt=0.5)`` would stretch every delay 2.5 times in silence. The step is the time
+        per tick between two observations the agent saw (ticks it did not see, such as the
+        pauses ``learn_map`` leaves out, divide out; a repeated tick or a clock that does not
+        count ticks is not checked)."""
+        last, self._last_tick = self._last_tick, (
+            tick if type(tick) is int or isinstance(tick, np.integer) else None)
+        if last is None or self._last_tick is None or self._last_tick <= last:
+            return
+        step = (self._last_t - last_t) / (self._last_tick - last)
+        dt = self.params.brain.dt
+        if abs(step - dt) > 1e-6 * dt + 1e-8:
+            raise ValueError(
+                f"the observations' clock runs {step:.6g} s per tick (obs.t {last_t:.6g} at "
+                f"tick {last}, {self._last_t:.6g} at tick {self._last_tick}), but the agent's "
+                f"BrainParams.dt is {dt:g} s: give the World and the agent the same step "
+                f"(World(dt={dt:g}), or AgentParams(dt=<the world's dt>))")

@@ -36,7 +36,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite
+from hippo._checks import check_finite, check_real
 from hippo.brain_params import BrainParams
 from hippo.cognitive_map import Action, DriveParams, Drives, Planner, TransitionGraph
 from hippo.cognitive_map.localise import MapLocaliser
@@ -152,7 +152,8 @@ class Brain:
         none). False (default): a new trial, every drive released. ``moved`` False: put back
         where it was (nothing for the place cells to re-anchor).
         """
-        self.pi.heading = wrap_angle(self.pi.heading + heading_change)
+        turn = check_real("heading_change", heading_change)   # finite radians, checked first
+        self.pi.heading = wrap_angle(self.pi.heading + turn)
         if self.sectors is not None:
             self.sectors.reset()
         getattr(self.places, "lifted", lambda: None)() if moved else None   # re-anchor?

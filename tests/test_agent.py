@@ -472,3 +472,34 @@ def test_boxed_in_is_answered_once_per_observation():
     fresh = Observation(0.2, 1, pressed.copy(), 0, False, np.zeros(3), False)
     assert avoid.boxed_in(fresh)
     assert not avoid.boxed_in(Observation(0.4, 2, clear, 0, False, np.zeros(3), False))
+
+
+def test_an_agent_refuses_a_world_whose_clock_runs_at_another_step():
+    """The fourth fuzzing pass: on World(dt=0.5) or dt=1.0 the brain integrated its own 0.2 s a
+    tick (drives, time cells, learned delays), silently off by the ratio of the two."""
+    arena = arenas.get("two-rooms")
+    for dt in (0.5, 1.0, 0.4, 0.1):
+        world = World(arena, dt=dt, seed=0)
+        agent = Agent(GroundTruthPlaceCells(arena.locations), drives={"food": DriveParams()})
+        obs = world.observe()
+        obs = world.step(agent.step(obs, world.truth))   # the first tick: nothing to compare
+        with pytest.raises(ValueError, match=rf"clock runs {dt:g} s per tick .* the agent's "
+                                             r"BrainParams\.dt is 0\.2 s"):
+            agent.step(obs, world.truth)
+    # the same step runs on; ticks the agent did not see (the exploration's pauses learn_map
+    # leaves out, the world stepped without it after a lift) and a repeated tick are no error
+    world = World(arena, seed=0)
+    agent = Agent(GroundTruthPlaceCells(arena.locations), drives={"food": DriveParams()})
+    obs = world.observe()
+    for k in range(30):
+        obs = world.step(agent.step(obs, world.truth))
+        if k % 7 == 3:
+            world.step((0.0, 0.0))
+            obs = world.step((0.0, 0.0))
+    agent.step(world.observe(), world.truth)
+    assert agent.brain.t == pytest.approx(world.t)
+    # a hand-made observation that does not count ticks is not checked
+    from hippo.types import Observation
+    agent.step(Observation(world.t + 3.7, world.tick, obs.ir, 0, False, np.zeros(3), False),
+               world.truth)
+    assert agent.brain.t == pytest.approx(world.t + 3.7)

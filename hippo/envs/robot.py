@@ -22,6 +22,7 @@ stream. ``reset(options={"pose": (x, y, heading)})`` starts at a chosen pose ins
 
 from __future__ import annotations
 
+import math
 from typing import Any, ClassVar
 
 import gymnasium as gym
@@ -86,11 +87,15 @@ class RobotEnv(gym.Env):
         unknown = set(options) - {"pose"}
         if unknown:
             raise ValueError(f"unknown reset option(s) {sorted(unknown)}; allowed: 'pose'")
-        pose = options.get("pose")
-        pose = tuple(float(v) for v in pose) if pose is not None else \
-            self.task.start_pose(self.np_random)
-        if len(pose) != 3:
-            raise ValueError(f"options['pose'] must be (x, y, heading), got {pose}")
+        given = options.get("pose")
+        try:
+            pose = tuple(float(v) for v in given) if given is not None else \
+                self.task.start_pose(self.np_random)
+        except (TypeError, ValueError):
+            pose = ()
+        if len(pose) != 3 or not all(map(math.isfinite, pose)):
+            raise ValueError(f"options['pose'] must be three finite numbers (x, y, heading), "
+                             f"got {given!r:.80}")
         world_seed = int(self.np_random.integers(0, 2**63 - 1))
         obs = self.world.reset(world_seed, pose=pose)  # type: ignore[arg-type]
         self._last = obs

@@ -21,7 +21,7 @@ from typing import Any, Protocol
 import numpy as np
 import pymunk
 
-from hippo._checks import check_int, check_positive, check_seed
+from hippo._checks import check_finite, check_int, check_positive, check_seed
 from hippo.sim.arena import Arena
 from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
 from hippo.types import GroundTruth, Observation, wrap_angle
@@ -153,6 +153,7 @@ class World:
     def reset(self, seed: int | None = None, pose: tuple[float, float, float] | None = None
               ) -> Observation:
         """Rebuild the space, put the robot at ``pose`` (default: the arena's start pose)."""
+        x, y, h = self._check_pose(pose if pose is not None else self.arena.start_pose)
         self.rng = np.random.default_rng(seed)
         self.seed = seed
         self.space = space = pymunk.Space()
@@ -179,8 +180,6 @@ class World:
 
         body.velocity_func = drive
         self.body, self._shape = body, shape
-        x, y, h = pose if pose is not None else self.arena.start_pose
-        self._check_free(x, y)
         body.position, body.angle = (x, y), h
         space.add(body, shape)
         self.obstacles: list[Obstacle] = []
@@ -192,6 +191,18 @@ class World:
         for iv in self._interventions:
             iv.reset()
         return self._observe(np.zeros(3), 0.0, sound=False)
+
+    def _check_pose(self, pose: Any) -> tuple[float, float, float]:
+        """``(x, y, heading)`` checked: finite numbers, the robot free of walls there."""
+        try:
+            x, y, h = (float(v) for v in pose)
+        except (TypeError, ValueError):
+            raise ValueError(f"pose must be three numbers (x, y, heading), got {pose!r:.80}"
+                             ) from None
+        if not math.isfinite(h):
+            raise ValueError(f"heading must be finite (radians), got {h!r}")
+        self._check_free(x, y)
+        return x, y, h
 
     def _check_free(self, x: float, y: float) -> None:
         if not all(math.isfinite(v) for v in (x, y)):
@@ -210,7 +221,7 @@ class World:
     def place_robot(self, x: float, y: float, heading: float, *, event: str = "kidnap"
                     ) -> None:
         """Move the robot to a pose and keep going (kidnapping); the pose must be free."""
-        self._check_free(x, y)
+        x, y, heading = self._check_pose((x, y, heading))
         for o in self.obstacles:
             if any(s.point_query((x, y)).distance < self.robot.radius for s in o.shapes):
                 raise ValueError(f"cannot place the robot at ({x:.1f}, {y:.1f}): obstacle there")
@@ -222,12 +233,23 @@ class World:
     # -- obstacles --------------------------------------------------------------------------
     def add_box(self, rect: tuple[float, float, float, float], *, movable: bool = True,
                 mass: float = 2.0) -> Obstacle:
-        """Add a box obstacle; ``movable`` boxes can be pushed (with floor friction)."""
-        x0, y0, x1, y1 = rect
+        """Add a box obstacle ``(x0, y0, x1, y1)``, inside the arena and clear of the robot;
+        ``movable`` boxes (``mass`` > 0, in kg) can be pushed (with floor friction)."""
+        r = check_finite("box rect", rect).ravel().tolist()
+        if len(r) != 4:
+            raise ValueError(f"box rect must be (x0, y0, x1, y1), got {rect!r:.80}")
+        x0, y0, x1, y1 = r
         w, h = x1 - x0, y1 - y0
         if w <= 0 or h <= 0:
-            raise ValueError(f"box {rect} has no area")
+            raise ValueError(f"box {rect} has no area (it needs x0 < x1 and y0 < y1)")
+        self._check_inside("box", rect, x0, y0, x1, y1)
+        px, py, _ = self.pose
+        near = math.hypot(px - min(max(px, x0), x1), py - min(max(py, y0), y1))
+        if near < self.robot.radius:
+            raise ValueError(f"box {rect} overlaps the robot at ({px:.1f}, {py:.1f}): put it "
+                             "elsewhere or move the robot first")
         if movable:
+            mass = check_positive("box mass", mass)
             body = pymunk.Body(mass, pymunk.moment_for_box(mass, (w, h)))
 
             def floor_friction(b: pymunk.Body, g: object, damping: float, dt: float) -> None:
@@ -242,13 +264,27 @@ class World:
 
     def add_ring(self, centre: tuple[float, float], radius: float, *, n: int = 16,
                  kind: str = "block") -> Obstacle:
-        """A fixed ring of wall around ``centre`` (the teacher's block uses it)."""
+        """A fixed ring of wall (``n`` >= 3 segments) of ``radius`` > 0 around ``centre``, a
+        point of the arena (the teacher's block uses it)."""
+        c = check_finite("ring centre", centre).ravel().tolist()
+        if len(c) != 2:
+            raise ValueError(f"ring centre must be (x, y), got {centre!r:.80}")
+        self._check_inside("ring centre", centre, c[0], c[1], c[0], c[1])
+        radius = check_positive("ring radius", radius)
+        n = check_int("ring segments n", n, lo=3)
         body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
-        body.position = centre
+        body.position = tuple(c)
         pts = [(radius * math.cos(2 * math.pi * k / n), radius * math.sin(2 * math.pi * k / n))
                for k in range(n)]
         shapes = [pymunk.Segment(body, pts[k], pts[(k + 1) % n], 0.5) for k in range(n)]
         return self._add_obstacle(body, shapes, kind)
+
+    def _check_inside(self, what: str, given: Any, x0: float, y0: float, x1: float,
+                      y1: float) -> None:
+        a = self.arena
+        if x0 < 0 or y0 < 0 or x1 > a.width or y1 > a.height:
+            raise ValueError(f"{what} {given!r:.80} lies outside the {a.width:g} x "
+                             f"{a.height:g} arena {a.name!r}")
 
     def _add_obstacle(self, body: pymunk.Body, shapes: list[pymunk.Shape], kind: str
                       ) -> Obstacle:

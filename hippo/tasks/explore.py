@@ -122,6 +122,14 @@ def learn_map(agent: Any, tour: Tour, desc: str = "map learning") -> None:
             bar.update()
 
 
+def place_model(units: int, seed: int = 0) -> RCSFAICA:
+    """The learned place cells' RC-SFA-ICA before its fit (:func:`make_places` fits it):
+    ``units`` slow features and ICA units over 8 IR readings and a 400-neuron reservoir (its
+    ``params.sfa_inputs`` bound ``units``, ``params.min_fit_ticks`` the exploration)."""
+    return RCSFAICA(n_reservoir=400, leak=(0.1, 0.3), spectral_radius=0.9, n_sfa=units,
+                    n_ica=units, ica_restarts=3, seed=seed)
+
+
 def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: int,
                 n_places: int = 32, moving: np.ndarray | None = None) -> PlaceSource:
     """The place-cell source: RC-SFA-ICA fitted on the exploration (``units`` ICA units read
@@ -143,8 +151,7 @@ def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: 
         return GroundTruthPlaceCells(arena.locations, sigma=8.0)
     if kind != "learned":
         raise ValueError(f"place cells must be 'learned' or 'ground-truth', got {kind!r}")
-    model = RCSFAICA(n_reservoir=400, leak=(0.1, 0.3), spectral_radius=0.9, n_sfa=units,
-                     n_ica=units, ica_restarts=3, seed=seed)
+    model = place_model(units, seed)
     with working("fitting place cells"):
         Y = model.fit_transform(sensors)
         protos = PlacePrototypes(PrototypeParams(n_prototypes=n_places, seed=seed)).fit(Y)

@@ -12,15 +12,17 @@ What comes back is a :class:`Lesson`; ``lesson.course.patrol(loops)`` patrols an
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from hippo._checks import check_int
+from hippo._checks import check_int, check_real
 from hippo.agent import Agent, AgentParams
 from hippo.cognitive_map import DriveParams, LocaliserParams, PlannerParams
+from hippo.perception.relocate import RelocaliserParams
 from hippo.sim import World
 from hippo.sim.arena import Arena
-from hippo.tasks.explore import PLACE_STATES, explore, make_places, wall_side
+from hippo.tasks.explore import PLACE_STATES, explore, make_places, place_model, wall_side
 from hippo.tasks.log import Log
 from hippo.tasks.passes import stops
 from hippo.tasks.patrol import PatrolCourse, PatrolPhase
@@ -74,13 +76,16 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
         raise ValueError(f"place_cells must be 'learned' or 'ground-truth', got {place_cells!r}")
     if side is not None and check_int("side", side) not in (-1, 1):
         raise ValueError(f"side must be -1 (right wall), +1 (left wall) or None, got {side!r}")
-    if not 0.1 <= float(explore_min) <= 1e4:
+    if not 0.1 <= check_real("explore_min", explore_min) <= 1e4:
         raise ValueError(f"explore_min must be 0.1 to 10,000 simulated minutes, got "
                          f"{explore_min!r}")
     for name, v, hi in (("units", units, 600), ("places", places, 256),
                         ("heading_sectors", heading_sectors, 360)):
         if v is not None:
             check_int(name, v, lo=1, hi=hi)
+    world = World(arena_obj, sensors="ir8", seed=seed)
+    if place_cells == "learned":
+        _check_learned(units, explore_min, world.dt, reanchor)
     if place_cells == "ground-truth" and not len(arena_obj.locations):
         raise ValueError(f"arena {arena_obj.name!r} has no reference locations for ground-truth "
                          "place cells (ArenaBuilder.grid_locations)")
@@ -88,7 +93,6 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
     sectors = heading_sectors if heading_sectors is not None else (
         LEARNED_SECTORS if place_cells == "learned" else 1)
     names = [f"checkpoint-{k}" for k in range(1, len(checkpoints) + 1)]
-    world = World(arena_obj, sensors="ir8", seed=seed)
     log = Log(n_drives=len(checkpoints))
     side = wall_side(loop, arena_obj, seed) if side is None else side
     # exploration: place cells only (HIREL learns the map on the leash)
@@ -115,3 +119,25 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
                     and st["phase"] == PatrolPhase.CHECKPOINTS), default=None)
                for k in range(len(checkpoints))]
     return Lesson(world, agent, s, course, reproduced, longest, kind)
+
+
+def _check_learned(units: int, explore_min: float, dt: float, reanchor: bool) -> None:
+    """Before any work: ``units`` within the learned place cells' SFA input, and an
+    exploration of ``explore_min`` long enough for their fit (and, with ``reanchor``, for the
+    sequence relocaliser's fit, which counts only the ticks the robot moves)."""
+    p = place_model(units).params
+    if units > p.sfa_inputs:
+        raise ValueError(f"units={units} exceeds the {p.sfa_inputs} inputs of the learned place "
+                         f"cells' SFA ({p.n_inputs} IR readings + {p.n_reservoir} reservoir "
+                         f"neurons): at most {p.sfa_inputs}")
+    need, why = (p.min_fit_ticks + p.washout - 1) * p.downsample + 1, "the place cells' fit"
+    if reanchor:
+        r = RelocaliserParams()
+        moving = r.skip + r.window + 2 * r.spread
+        if moving > need:
+            need, why = moving, "reanchor's sequence matching (of the ticks the robot moves)"
+    ticks = round(explore_min * 60 / dt)
+    if ticks < need:
+        raise ValueError(f"explore_min={explore_min!r} gives {ticks} ticks of exploration; "
+                         f"{why} needs at least {need} ({need * dt:g} s): explore_min >= "
+                         f"{math.ceil(need * dt / 60 * 100) / 100:g}")

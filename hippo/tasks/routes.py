@@ -26,6 +26,7 @@ from itertools import pairwise
 from typing import Any
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from hippo._checks import check_finite, check_positive, check_real
 
@@ -225,12 +226,18 @@ class Route:
         p = self._points_at(s)
         k = self._segments_at(s)[1]
         u = self._d[k] / np.maximum(self._len[k], 1e-12)[:, None]
-        near = np.hypot(*(p[:, None, :] - p[None, :, :]).transpose(2, 0, 1)) < 12.0
-        ds = np.abs(s[:, None] - s[None, :])
+        # the pairs of points within 12 cm (a KD-tree: memory linear in the route's length,
+        # not its square; a hair wider, then the exact test)
+        i, j = cKDTree(p).query_pairs(12.0 + 1e-6, output_type="ndarray").T
+        near = np.hypot(p[i, 0] - p[j, 0], p[i, 1] - p[j, 1]) < 12.0
+        ds = np.abs(s[i] - s[j])
         if self.closed:
             ds = np.minimum(ds, self.length - ds)
-        back = (u @ u.T) < -0.5
-        return float(step * np.count_nonzero(np.any(near & back & (ds > 60.0), axis=1)))
+        back = u[i, 0] * u[j, 0] + u[i, 1] * u[j, 1] < -0.5
+        hit = near & back & (ds > 60.0)
+        doubled = np.zeros(len(s), dtype=bool)
+        doubled[i[hit]] = doubled[j[hit]] = True
+        return float(step * np.count_nonzero(doubled))
 
     def loop_from(self, pose: Sequence[float]) -> list[tuple[float, float]]:
         """One whole loop from the waypoint nearest ``pose`` (or the next one, if that one is

@@ -20,6 +20,7 @@ import warnings
 from collections.abc import Callable, Sequence
 from typing import Any
 
+from hippo._checks import check_int, check_real
 from hippo.progress import Progress
 from hippo.sim.teacher import Teacher
 from hippo.sim.world import World
@@ -73,7 +74,12 @@ class Session:
         is true after a tick; returns the last observation."""
         if (ticks is None) == (seconds is None):
             raise ValueError("give either ticks or seconds")
-        n = int(ticks) if ticks is not None else self.ticks(seconds)  # type: ignore[arg-type]
+        if ticks is not None:
+            n = check_int("ticks", ticks, lo=0)
+        else:
+            if check_real("seconds", seconds) < 0:
+                raise ValueError(f"seconds must be >= 0, got {seconds!r}")
+            n = self.ticks(seconds)  # type: ignore[arg-type]
         world, agent, log = self.world, self.agent, self.log
         obs = self.obs
         for _ in range(n):
@@ -117,6 +123,7 @@ class Session:
         observation it has not acted on yet, holds one more tick of odometry (its rotation
         would otherwise be lost at every lift, and the heading estimate would drift by up to
         half a radian per kidnap: place preference, tuning seed 0, 0.85 rad after 8 trials)."""
+        heading = check_real("heading", heading)   # before anything moves
         turned = wrap_angle(heading - self.world.truth.pose[2] + float(self.obs.odometry[2]))
         self.world.place_robot(x, y, heading, event=event)
         self.agent.lifted(heading_change=turned, keep_drives=keep_drives)

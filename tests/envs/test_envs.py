@@ -78,6 +78,20 @@ def test_action_is_normalised_wheel_speed_and_clipped():
         env.reset(options={"start": 1})
 
 
+@pytest.mark.parametrize("env_id", IDS)
+def test_a_reset_pose_that_is_not_three_finite_numbers_is_refused_by_name(env_id):
+    """The fourth fuzzing pass: a pose with an infinite heading was taken, and the reset failed
+    with "math domain error" from the ray casting."""
+    env = gym.make(env_id).unwrapped
+    for pose in ((60.0, 45.0, math.inf), (60.0, 45.0, math.nan), (math.inf, 45.0, 0.0),
+                 (60.0, 45.0), ("a", 45.0, 0.0), 3.0):
+        with pytest.raises(ValueError, match=r"options\['pose'\] must be three finite numbers"):
+            env.reset(seed=0, options={"pose": pose})
+    x, y, _ = env.task.arena.start_pose
+    _, info = env.reset(seed=0, options={"pose": (x, y, 0.5)})
+    assert info["pose"][2] == pytest.approx(0.5)
+
+
 def test_place_preference_pays_after_the_delay_still_in_the_goal():
     env = gym.make("hippo/PlacePreference-v0", delay=2.0).unwrapped
     gx, gy = env.task.arena.landmarks["goal"]

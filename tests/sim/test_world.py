@@ -328,3 +328,56 @@ def test_robot_crosses_goal_zone_well_under_the_reward_delay():
             n = 0
     assert len(runs) >= 2  # the wall follower's tour passes the goal zone
     assert max(runs) * rec.dt < 0.7 * 7.0  # even at the follower's drifting (slower) speed
+
+
+def test_obstacles_with_bad_geometry_are_refused_and_leave_the_world_as_it_was():
+    """The fourth fuzzing pass: a NaN box aborted the interpreter inside Chipmunk; mass 0 failed
+    at the next step; infinite, outside and over-the-robot boxes and empty rings went in."""
+    world = World(box(), seed=0)   # the robot stands at (50, 50), radius 3.7
+    for rect, kwargs, match in (
+            ((math.nan, 0.0, 1.0, 1.0), {}, r"box rect contains 1 non-finite"),
+            ((10.0, 10.0, 20.0, 20.0), {"mass": math.nan}, r"box mass must be finite and > 0"),
+            ((10.0, 10.0, 20.0, 20.0), {"mass": 0.0}, r"box mass must be finite and > 0"),
+            ((0.0, 0.0, math.inf, 1.0), {}, r"non-finite"),
+            ((1000.0, 1000.0, 1010.0, 1010.0), {}, r"lies outside the 100 x 100 arena 'box'"),
+            ((45.0, 45.0, 55.0, 55.0), {}, r"overlaps the robot at \(50\.0, 50\.0\)"),
+            ((52.0, 40.0, 60.0, 60.0), {"movable": False}, r"overlaps the robot"),
+            ((20.0, 20.0, 10.0, 30.0), {}, r"has no area"),
+            ((10.0, 10.0, 20.0), {}, r"box rect must be \(x0, y0, x1, y1\)")):
+        with pytest.raises(ValueError, match=match):
+            world.add_box(rect, **kwargs)
+    for centre, radius, kwargs, match in (
+            ((50.0, 50.0), 0.0, {}, r"ring radius must be finite and > 0"),
+            ((50.0, 50.0), math.nan, {}, r"ring radius"),
+            ((50.0, 50.0), math.inf, {}, r"ring radius"),
+            ((math.nan, 50.0), 5.0, {}, r"ring centre contains 1 non-finite"),
+            ((500.0, 50.0), 5.0, {}, r"ring centre \(500\.0, 50\.0\) lies outside"),
+            ((50.0, 50.0), 6.0, {"n": 2}, r"ring segments n must be an integer >= 3")):
+        with pytest.raises(ValueError, match=match):
+            world.add_ring(centre, radius, **kwargs)
+    assert world.obstacles == []
+    # good ones still go in, and the robot steps on untouched beside them
+    world.add_box((10.0, 10.0, 20.0, 20.0), mass=1.5)
+    world.add_box((53.8, 40.0, 60.0, 60.0), movable=False)  # 0.1 cm clear of the robot's rim
+    world.add_ring((50.0, 50.0), 6.0)
+    world.step((0.0, 0.0))
+    assert len(world.obstacles) == 3 and world.pose[:2] == pytest.approx((50.0, 50.0))
+
+
+def test_a_non_finite_heading_is_refused_where_it_is_given():
+    """The fourth fuzzing pass: place_robot and reset took an infinite heading, and the next
+    step failed with "math domain error"."""
+    world = World(box(), seed=0)
+    world.step((2.0, 2.0))
+    before = world.pose
+    for h in (math.inf, -math.inf, math.nan):
+        with pytest.raises(ValueError, match="heading must be finite"):
+            world.place_robot(30.0, 30.0, h)
+        with pytest.raises(ValueError, match="heading must be finite"):
+            world.reset(0, pose=(30.0, 30.0, h))
+    with pytest.raises(ValueError, match=r"pose must be three numbers \(x, y, heading\)"):
+        world.reset(0, pose=(30.0, 30.0))
+    # nothing moved, no half-rebuilt world: it steps on from where it was
+    assert world.pose == before and world.tick == 1
+    world.step((2.0, 2.0))
+    assert world.tick == 2 and math.isfinite(world.pose[2])

@@ -439,3 +439,33 @@ def test_an_explicit_route_kind_is_followed_on_the_default_course_too():
         got, route = choose_route("patrol-course", cps, kind)
         assert got == kind and route.winding != 0
         assert all(route.distance(*c) < 30.0 for c in cps)
+
+
+def test_teach_patrol_checks_units_and_explore_min_against_what_the_fit_needs():
+    """The fourth fuzzing pass: units=500 passed the check (1 to 600) and failed after the
+    exploration naming n_sfa; explore_min=0.1 (30 ticks) failed at the fit naming
+    min_fit_ticks. Both are refused first now, by the argument's name."""
+    import time
+
+    from hippo.tasks import teach_patrol
+
+    cps, waits = [(80, 11), (140, 56), (50, 105)], [24.1, 19.1, 11.6]
+    t0 = time.perf_counter()
+    for kwargs, match in (
+            ({"units": 500}, r"units=500 exceeds the 408 inputs of the learned place cells' SFA"),
+            ({"units": 409}, r"at most 408"),
+            ({"explore_min": 0.1}, r"explore_min=0\.1 gives 30 ticks .* fit needs at least "
+                                   r"100 .*explore_min >= 0\.34"),
+            ({"explore_min": 0.33}, r"explore_min=0\.33 gives 99 ticks"),
+            ({"explore_min": 0.5, "reanchor": True},
+             r"explore_min=0\.5 gives 150 ticks of exploration; reanchor's sequence matching "
+             r".* at least 305"),
+            ({"explore_min": "5"}, r"explore_min must be a real number")):
+        with pytest.raises(ValueError, match=match):
+            teach_patrol("patrol-course", cps, waits, **kwargs)
+    assert time.perf_counter() - t0 < 5.0   # before any exploration
+    # the limits are the place cells' own: the model make_places fits has them
+    from hippo.tasks.explore import place_model
+
+    p = place_model(24).params
+    assert (p.sfa_inputs, p.min_fit_ticks, p.washout, p.downsample) == (408, 100, 0, 1)

@@ -115,6 +115,47 @@ def test_path_length_starts_where_the_robot_was_put():
     assert log.path_length(0, (20.0, 15.0), t_half) == pytest.approx(x_half - 20.0, abs=0.05)
 
 
+def test_run_refuses_a_length_that_is_no_whole_count_of_ticks_or_no_time():
+    """The fourth fuzzing pass: -5 ran 0 ticks, 2.7 ran 2, "5" ran 5, seconds=-1 ran 0 in
+    silence; NaN and inf seconds failed inside int()."""
+    _, _, s = _session()
+    for ticks, match in ((-5, r"ticks must be an integer >= 0, got -5"),
+                         (2.7, r"ticks must be an integer, got 2\.7"),
+                         ("5", r"ticks must be an integer, got '5'"),
+                         (True, r"ticks must be an integer, got True")):
+        with pytest.raises(ValueError, match=match):
+            s.run(ticks)
+    for seconds, match in ((-1.0, r"seconds must be >= 0, got -1\.0"),
+                           (math.nan, r"seconds must be finite"),
+                           (math.inf, r"seconds must be finite"),
+                           ("5", r"seconds must be a real number")):
+        with pytest.raises(ValueError, match=match):
+            s.run(seconds=seconds)
+    assert len(s.log) == 0 and s.world.tick == 0
+    s.run(np.int64(3))
+    s.run(0)
+    s.run(seconds=0.4)
+    assert len(s.log) == 5 and s.world.tick == 5
+
+
+def test_put_refuses_a_heading_that_is_not_finite_before_anything_moves():
+    """The fourth fuzzing pass: put(50, 50, inf) was taken, and the next tick failed with "math
+    domain error"; Agent.lifted(heading_change=nan) made the heading estimate NaN."""
+    world, agent, s = _session()
+    s.run(5)
+    pose, heading = world.pose, agent.brain.pi.heading
+    for h in (math.inf, math.nan, "1.0"):
+        with pytest.raises(ValueError, match="heading must be"):
+            s.put(100.0, 15.0, h)
+        with pytest.raises(ValueError, match="heading_change must be"):
+            agent.lifted(heading_change=h)
+    assert world.pose == pose and agent.brain.pi.heading == heading
+    assert [e for e in world.events if e[1] == "kidnap"] == []
+    s.put(100.0, 15.0, 1.0)
+    s.run(3)
+    assert math.isfinite(agent.brain.pi.heading) and len(s.log) == 8
+
+
 def test_a_kidnap_keeps_the_heading_estimate_exact_even_mid_turn():
     # the robot is lifted while turning: the last observation's rotation, which the agent has
     # not integrated yet, must count (it was lost before: up to 0.5 rad per lift)
