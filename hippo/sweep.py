@@ -142,6 +142,19 @@ def _row(rec: Mapping[str, Any], names: Sequence[str]) -> dict[str, Any]:
     return row
 
 
+def _warn_oversubscribed(workers: int, cores: int) -> bool:
+    """Warn (and return True) when a LocalCluster of ``workers`` processes would run more cells
+    at once than the machine has ``cores``: each cell then runs slower, and the sweep no
+    faster (the default, the free cores, never does)."""
+    if workers <= cores:
+        return False
+    warnings.warn(f"--workers {workers} starts {workers} worker processes on {cores} cores: "
+                  f"they share the cores, so no cell runs faster; leave --workers out for "
+                  f"the free cores, or give --scheduler for a larger cluster",
+                  RuntimeWarning, stacklevel=3)
+    return True
+
+
 def _connect(scheduler: str | None, workers: int):
     """A client of the cluster at ``scheduler``, or of a new LocalCluster (closed by the caller)."""
     from distributed import Client, LocalCluster
@@ -202,6 +215,8 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
             # the one rule (hippo._threads): default workers = the free cores, as the leak
             # sweep and the ICA restarts choose them, each worker with cores // workers BLAS
             # threads; on busy cores that is one worker, never more threads than cores
+            if scheduler is None:
+                _warn_oversubscribed(n_workers(workers), os.cpu_count() or 1)
             client, own_cluster = _connect(scheduler, n_workers(workers))
             own_client = client
         try:

@@ -380,3 +380,16 @@ def test_killing_a_worker_loses_no_cell(tmp_path):
     assert res.ok and len(res.rows) == 8
     assert sorted(r["value"] for r in res.rows) == list(range(8))
     assert max(r["attempts"] for r in res.rows) >= 2  # the lost cell ran again, and it shows
+
+
+def test_more_local_workers_than_cores_are_warned_about():
+    # (fourth fuzzing pass: --workers 64 on 2 cores started 64 processes without a word)
+    from hippo.sweep import _warn_oversubscribed
+
+    with pytest.warns(RuntimeWarning, match="64 worker processes on 2 cores"):
+        assert _warn_oversubscribed(64, 2)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert not _warn_oversubscribed(2, 2) and not _warn_oversubscribed(1, 8)
