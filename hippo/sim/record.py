@@ -79,10 +79,15 @@ class Recording:
         length T, finiteness, sensors in [0, 1], time increasing, ``dt > 0``, region indices
         within ``region_names``); a damaged file raises :class:`~hippo.io.CorruptFileError`."""
         names = [f.name for f in fields(cls)]
-        data = load_npz(path, required=[*names, "format"])
+        data = load_npz(path, required=["format"])   # the kind first, then its arrays
         fmt = data["format"]
         if fmt.dtype.kind != "U" or fmt.shape != () or str(fmt) != RECORDING_FORMAT:
-            raise CorruptFileError(f"{path} is not a hippo recording")
+            found = str(fmt)[:60] if fmt.dtype.kind == "U" and fmt.shape == () else "no text"
+            raise CorruptFileError(f"{path} is not a hippo recording (its format tag is "
+                                   f"{found!r}, a recording's {RECORDING_FORMAT!r})")
+        missing = [k for k in names if k not in data]
+        if missing:
+            raise CorruptFileError(f"{path} lacks required array(s): {', '.join(missing)}")
         try:
             kw = _checked_fields(data)
         except ValueError as exc:

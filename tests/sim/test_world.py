@@ -266,6 +266,12 @@ def test_corrupt_or_truncated_recording(tmp_path):
     np.savez(other, a=np.zeros(3))
     with pytest.raises(CorruptFileError, match="lacks required"):
         Recording.load(other)
+    # a file of another kind is named by its format tag, not by the arrays it lacks
+    from hippo.perception import RCSFAICA
+
+    model = RCSFAICA(n_reservoir=20, ica_restarts=1).fit(rec.sensors)
+    with pytest.raises(CorruptFileError, match=r"format tag is 'hippo\.perception\.RCSFAICA"):
+        Recording.load(model.save(tmp_path / "model.npz"))
 
 
 def test_failed_save_leaves_nothing(tmp_path):
