@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from hippo._checks import check_fields, check_positive
+from hippo._checks import check_fields, check_positive, check_real
 from hippo.sim.controllers import (
     ObstacleAvoidance,
     WallFollower,
@@ -141,11 +141,12 @@ class Motor:
         head-on when the estimate is off, and then the way the robot was going (its tour)
         decides.
         """
+        heading, target = check_real("heading", heading), check_real("target", target)
         g = self.explorer.geom
         normal = float(g.angles[int(np.argmin(g.distances(obs.ir)))])
         score = math.sin(target - heading - normal)
         if travel is not None:
-            score += math.sin(travel - heading - normal)
+            score += math.sin(check_real("travel", travel) - heading - normal)
         turn = 1 if score > 0 else -1
         return wrap_angle(heading + normal + turn * math.pi / 2), -turn
 

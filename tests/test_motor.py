@@ -113,3 +113,16 @@ def test_the_travel_memory_follows_the_last_20_cm_and_ignores_turning_on_the_spo
     assert motor.travel == pytest.approx(-math.pi / 2, abs=0.01)
 
 
+
+
+def test_unstick_way_refuses_a_heading_that_is_not_a_number():
+    world = World(BOX, seed=0)
+    obs = world.reset(0, pose=(50, 50, 1.0))
+    motor = Motor()
+    for bad in (math.nan, math.inf, "north", None):
+        with pytest.raises(ValueError, match="heading must be"):
+            motor.unstick_way(obs, bad, 0.0)
+        with pytest.raises(ValueError, match="target must be"):
+            motor.unstick_way(obs, 0.0, bad)
+    with pytest.raises(ValueError, match="travel must be finite"):
+        motor.unstick_way(obs, 0.0, 0.0, travel=math.nan)
