@@ -9,8 +9,9 @@ By the tick's :class:`~hippo.types.Mode`:
   way, steer to the heading otherwise, with obstacle avoidance). A heading that runs into a wall
   leaves the robot stalled (own speed under ``stall_speed`` for ``stall_time`` s): it then
   goes along the blocking wall for ``unstick_time`` s, the way along it nearer the move's
-  heading (:meth:`Motor.unstick_way`). A move that takes longer than the brain's
-  ``move_limit`` is given up (:attr:`MotorCommand.gave_up`) and the robot explores;
+  heading and the robot's own travel (:meth:`Motor.unstick_way`). A move that takes longer
+  than the brain's ``move_limit`` is given up (:attr:`MotorCommand.gave_up`) and the robot
+  explores;
 - ``EXPLORE``, or a settling robot — SMC09's wall follower.
 """
 
@@ -52,7 +53,7 @@ class MotorParams:
     stall_speed: cm/s (from odometry) under which a moving robot counts as stalled.
     stall_time, unstick_time: a move that leaves the robot stalled for ``stall_time`` s (its
         heading runs into a wall) goes along the blocking wall for ``unstick_time`` s, the
-        way along it nearer the move's heading.
+        way along it nearer the move's heading and the robot's own travel.
     wall_tolerance: a move goes along the followed wall (the exploration's own motion, so the
         place cells see what they were trained on) while the move's heading is within this
         many radians of the robot's; beyond it the robot steers to the heading.
@@ -117,7 +118,9 @@ class Motor:
         self.avoid = ObstacleAvoidance(sensors=self.sensors, robot=self.robot)
         self._stalled = 0
         self._unstick_until = -math.inf
-        self._unstick_heading, self._unstick_side, self._aligning = 0.0, p.wall_side, False
+        self._unstick_heading, self._unstick_side = 0.0, p.wall_side
+        self._aligning = 0   # ticks the turn to the unstick heading may still take
+        self._align_budget = int(math.pi / (_TURN * self.dt)) + 3   # half a turn, and some
         self._travel = (0.0, 0.0)
 
     def boxed_in(self, obs: Observation) -> bool:
@@ -170,13 +173,14 @@ class Motor:
 
     def _unstick(self, obs: Observation, heading: float) -> tuple[float, float]:
         """Turn on the spot to the unstick heading once (a round body turns free; the time
-        spent turning is added to the unsticking), then follow the wall on the side that keeps
-        it."""
+        spent turning, at most half a turn's, is added to the unsticking), then follow the
+        wall on the side that keeps it."""
         err = wrap_angle(self._unstick_heading - heading)
-        if self._aligning and abs(err) > _ALIGNED:
+        if self._aligning > 0 and abs(err) > _ALIGNED:
+            self._aligning -= 1
             self._unstick_until += self.dt
             return self.robot.wheels_for(0.0, math.copysign(_TURN, err))
-        self._aligning = False
+        self._aligning = 0
         return self._follow(obs, self._unstick_side)
 
     def _follow(self, obs: Observation, side: int) -> tuple[float, float]:
@@ -202,7 +206,7 @@ class Motor:
                 self._stalled = self._stalled + 1 if own_speed < self.p.stall_speed else 0
                 if self._stalled * self.dt >= self.p.stall_time:
                     self._unstick_until, self._stalled = tick.t + self.p.unstick_time, 0
-                    self._aligning = True
+                    self._aligning = self._align_budget
                     self._unstick_heading, self._unstick_side = self.unstick_way(
                         obs, tick.heading, tick.target_heading, self.travel)
             if tick.t < self._unstick_until:  # getting free: turning on the spot is no stall

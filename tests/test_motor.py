@@ -126,3 +126,28 @@ def test_unstick_way_refuses_a_heading_that_is_not_a_number():
             motor.unstick_way(obs, 0.0, bad)
     with pytest.raises(ValueError, match="travel must be finite"):
         motor.unstick_way(obs, 0.0, 0.0, travel=math.nan)
+
+
+def test_the_turn_to_get_free_is_bounded_when_the_heading_estimate_does_not_follow():
+    """The turn on the spot ends at the unstick heading or after half a turn's time: a heading
+    estimate that does not move (a robot held, odometry lost) cannot hold it there for good."""
+    motor = Motor()
+    ir = np.full(8, 0.9)
+    ir[0] = 0.05                  # a wall ahead, just right of the nose
+    still = np.zeros(3)
+    runs, run, t = [], 0, 0.0     # lengths of the runs of turning-on-the-spot commands
+    freed = False
+    for _ in range(200):
+        obs = Observation(t, 0, ir, 0, False, still, False)
+        tick = Tick(t, 0, False, Mode.MOVE, None, 1.2, 0.0, 0.0, 1e9, False, ())
+        left, right = motor.act(obs, tick).wheels
+        if left == -right != 0.0:
+            run += 1
+        elif run:
+            runs.append(run)
+            run = 0
+        freed |= bool(runs) and t >= motor._unstick_until   # a stall's window came to an end
+        t = round(t + 0.2, 9)
+    # stalled after 1 s, each stall turns for at most pi / (1.5 rad/s) + 3 ticks, then the
+    # unstick window (4 s) runs out and the move steers again, until it stalls again
+    assert len(runs) >= 3 and max(runs) == int(math.pi / (1.5 * 0.2)) + 3 and freed
