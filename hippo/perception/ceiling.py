@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hippo._checks import check_int, check_real
 from hippo.perception.metric_checks import _check_Y
 
 
@@ -37,11 +38,21 @@ class Ceiling:
 
 def time_blocks(T: int, folds: int) -> np.ndarray:
     """Boundaries ``(folds + 1,)`` of ``folds`` contiguous blocks of ``range(T)``."""
-    if int(folds) < 2:
-        raise ValueError(f"folds must be >= 2, got {folds}")
-    if T < 2 * int(folds):
+    folds = check_int("folds", folds, lo=2)
+    if T < 2 * folds:
         raise ValueError(f"{T} samples are too few for {folds} folds")
-    return np.linspace(0, T, int(folds) + 1).round().astype(int)
+    return np.linspace(0, T, folds + 1).round().astype(int)
+
+
+def _check_alphas(alphas: tuple[float, ...]) -> tuple[float, ...]:
+    """``alphas`` as a non-empty tuple of finite penalties > 0."""
+    try:
+        vals = tuple(alphas)
+    except TypeError:
+        raise ValueError(f"alphas must be a sequence of ridge penalties, got {alphas!r}") from None
+    if not vals or not all(check_real("alphas", a) > 0 for a in vals):
+        raise ValueError(f"alphas must be finite ridge penalties > 0, got {alphas!r}")
+    return vals
 
 
 def ridge_ceiling(X: np.ndarray, labels: np.ndarray, n_classes: int | None = None, *,
@@ -67,15 +78,28 @@ def ridge_ceiling(X: np.ndarray, labels: np.ndarray, n_classes: int | None = Non
     m = np.ones(lab.size, bool) if mask is None else np.asarray(mask, bool)
     if m.shape != lab.shape:
         raise ValueError(f"mask must have shape {lab.shape}, got {m.shape}")
+    n_fit = int(m.sum())
+    if n_fit == 0:
+        raise ValueError("mask selects no samples: nothing to fit or score")
     if np.any(lab[m] < 0):
         raise ValueError("labels inside the mask must be >= 0")
-    C = int(n_classes) if n_classes is not None else int(lab[m].max()) + 1
+    if n_classes is None:
+        C = int(lab[m].max()) + 1
+    else:
+        C = check_int("n_classes", n_classes)
+        if C >= 2 and lab[m].max() >= C:
+            raise ValueError(f"labels inside the mask must lie in [0, n_classes={C}), got "
+                             f"{lab[m].max()}")
     if C < 2:
         raise ValueError(f"the ceiling needs at least 2 classes, got {C}")
-    if not alphas or any(a <= 0 for a in alphas):
-        raise ValueError(f"alphas must be positive numbers, got {alphas}")
+    if C > n_fit:  # surely a mistake, and a (T, classes) target matrix that may not fit
+        raise ValueError(f"{C} classes (n_classes, or the largest label + 1) for {n_fit} "
+                         "samples in the mask: there can be at most one class per sample")
+    alphas = _check_alphas(alphas)
+    gap = check_int("gap", gap, lo=0)
     T = X.shape[0]
     bounds = time_blocks(T, folds)
+    folds = len(bounds) - 1
     mu, sd = X.mean(axis=0), X.std(axis=0)
     sd[sd < 1e-12] = 1.0
     Z = np.column_stack([(X - mu) / sd, np.ones(T)])

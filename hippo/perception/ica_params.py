@@ -11,7 +11,10 @@ from dataclasses import dataclass
 from hippo._checks import check_fields
 from hippo.perception.ica_scores import SCORES
 
-__all__ = ["ICAParams"]
+__all__ = ["MAX_RESTARTS", "ICAParams"]
+
+#: the most random restarts (the command line's cap, ``--ica-restarts``)
+MAX_RESTARTS = 1000
 
 
 @dataclass(frozen=True)
@@ -44,8 +47,9 @@ class ICAParams:
             raise ValueError(f"max_iter must be >= 1, got {self.max_iter}")
         if not float(self.tol) > 0:
             raise ValueError(f"tol must be > 0, got {self.tol}")
-        if int(self.n_restarts) < 1:
-            raise ValueError(f"n_restarts must be >= 1, got {self.n_restarts}")
+        if not 1 <= self.n_restarts <= MAX_RESTARTS:
+            raise ValueError(f"n_restarts must lie in [1, {MAX_RESTARTS}] (each restart is a "
+                             f"whole FastICA fit), got {self.n_restarts}")
         if self.score not in SCORES:
             raise ValueError(f"score must be one of {SCORES}, got {self.score!r}")
         if self.workers is not None and int(self.workers) < 1:

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hippo._checks import check_finite, check_int
+from hippo._checks import check_finite, check_int, check_real
 from hippo.perception.ceiling import Ceiling as Ceiling
 from hippo.perception.ceiling import ridge_ceiling as ridge_ceiling
 from hippo.perception.ceiling import time_blocks as time_blocks
@@ -29,7 +29,21 @@ from hippo.perception.metric_checks import _check_labels, _check_Y
 ICANN09_THRESHOLD = 4.5
 
 
+#: the most bins per axis of a place-field grid (a grid of 1000 x 1000 bins per unit)
+MAX_BINS = 1000
+
+
 # ---------------------------------------------------------------------------- place fields
+def _check_bins(bins: int | tuple[int, int]) -> tuple[int, int]:
+    """``(nx, ny)`` from ``bins`` (one count for both axes, or a pair), each an integer in
+    [1, :data:`MAX_BINS`]."""
+    pair = (bins, bins) if np.ndim(bins) == 0 else tuple(bins)
+    if len(pair) != 2:
+        raise ValueError(f"bins must be an integer or a pair (nx, ny), got {bins!r}")
+    nx, ny = (check_int("bins", b, lo=1, hi=MAX_BINS) for b in pair)
+    return nx, ny
+
+
 def place_fields_grid(xy: np.ndarray, Y: np.ndarray, *, bins: int | tuple[int, int] = 30,
                       extent: tuple[float, float, float, float] | None = None
                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -44,7 +58,7 @@ def place_fields_grid(xy: np.ndarray, Y: np.ndarray, *, bins: int | tuple[int, i
     Y = _check_Y(Y, xy.shape[0])
     if extent is None:
         extent = (xy[:, 0].min(), xy[:, 0].max() + 1e-9, xy[:, 1].min(), xy[:, 1].max() + 1e-9)
-    nx, ny = (bins, bins) if np.ndim(bins) == 0 else bins
+    nx, ny = _check_bins(bins)
     xe = np.linspace(extent[0], extent[1], int(nx) + 1)
     ye = np.linspace(extent[2], extent[3], int(ny) + 1)
     ix = np.clip(np.searchsorted(xe, xy[:, 0], side="right") - 1, 0, int(nx) - 1)
@@ -102,6 +116,8 @@ def location_neighbors(locations: np.ndarray, radius: float | None = None,
         if L < 2:
             return np.ones((L, L), bool)
         radius = 1.5 * float(np.median(np.sort(d, axis=1)[:, 1]))
+    elif not check_real("radius", radius) > 0:
+        raise ValueError(f"radius must be finite and > 0, got {radius!r}")
     nb = d <= radius
     if walls is not None and len(walls):
         w = check_finite("walls", walls)
@@ -143,6 +159,7 @@ def localized_units(Y: np.ndarray, labels: np.ndarray, neighbors: np.ndarray, *,
     nb = np.asarray(neighbors, dtype=bool)
     if nb.ndim != 2 or nb.shape[0] != nb.shape[1]:
         raise ValueError(f"neighbors must be a square boolean matrix, got {nb.shape}")
+    threshold = check_real("threshold", threshold)
     lab = _check_labels(labels, nb.shape[0])
     Y = _check_Y(Y, lab.size)
     k = Y.shape[1]
@@ -260,15 +277,28 @@ def decoding_accuracy(Y: np.ndarray, labels: np.ndarray, decoder: np.ndarray,
 
 # ---------------------------------------------------------------------------- binary cells
 def balanced_accuracy(pred: np.ndarray, truth: np.ndarray) -> float:
-    """Mean of the true-positive and true-negative rates (0.5 = chance)."""
-    pred = np.asarray(pred, bool)
-    truth = np.asarray(truth, bool)
+    """Mean of the true-positive and true-negative rates (0.5 = chance). ``pred`` and
+    ``truth``: booleans (or integers 0 and 1)."""
+    pred, truth = _binary("pred", pred), _binary("truth", truth)
     if pred.shape != truth.shape:
         raise ValueError(f"pred {pred.shape} and truth {truth.shape} differ in shape")
     pos, neg = truth.sum(), (~truth).sum()
     if pos == 0 or neg == 0:
         return float("nan")
     return 0.5 * (float((pred & truth).sum()) / pos + float((~pred & ~truth).sum()) / neg)
+
+
+def _binary(name: str, value: np.ndarray) -> np.ndarray:
+    """``value`` as a boolean array: booleans, or integers 0 and 1 (floats, negative and other
+    labels are refused: casting them would turn them into classes silently)."""
+    a = np.asarray(value)
+    if a.dtype.kind == "b":
+        return a
+    if a.dtype.kind not in "iu" or (a.size and (a.min() < 0 or a.max() > 1)):
+        raise ValueError(f"{name} must hold booleans (or integers 0 and 1), got dtype {a.dtype}"
+                         + (f" with values {a.min()}..{a.max()}"
+                            if a.size and a.dtype.kind in "iuf" else ""))
+    return a.astype(bool)
 
 
 @dataclass

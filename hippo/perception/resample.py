@@ -17,17 +17,15 @@ from __future__ import annotations
 import numpy as np
 import scipy.signal
 
+from hippo._checks import check_finite, check_int
+
 
 def antialias_taps(factor: int, numtaps: int | None = None) -> np.ndarray:
     """Low-pass FIR taps for down-sampling by ``factor`` (unit DC gain)."""
-    factor = int(factor)
-    if factor < 1:
-        raise ValueError(f"downsample factor must be >= 1, got {factor}")
+    factor = check_int("downsample factor", factor, lo=1)
     if factor == 1:
         return np.ones(1)
-    n = 2 * factor + 1 if numtaps is None else int(numtaps)
-    if n < 1:
-        raise ValueError(f"numtaps must be >= 1, got {numtaps}")
+    n = 2 * factor + 1 if numtaps is None else check_int("numtaps", numtaps, lo=1)
     taps = scipy.signal.firwin(n, 1.0 / factor, window="hamming")
     return taps / taps.sum()
 
@@ -39,7 +37,7 @@ class Decimator:
     """
 
     def __init__(self, factor: int, numtaps: int | None = None) -> None:
-        self.factor = int(factor)
+        self.factor = check_int("downsample factor", factor, lo=1)
         self.taps = antialias_taps(self.factor, numtaps)
         # applied to a window ordered oldest -> newest
         self._rev = self.taps[::-1].copy()
@@ -60,7 +58,9 @@ class Decimator:
 
     def offline(self, U: np.ndarray) -> np.ndarray:
         """Down-sampled ``(T // factor, n)`` version of ``U`` ``(T, n)``."""
-        U = np.asarray(U, dtype=float)
+        U = check_finite("input U", U)
+        if U.ndim != 2:
+            raise ValueError(f"input U must be (T, n) (one row a tick), got shape {U.shape}")
         if self.factor == 1:
             return U.copy()
         T, n = U.shape
@@ -74,11 +74,15 @@ class Decimator:
     def push(self, u: np.ndarray) -> np.ndarray | None:
         """Feed one input tick; return the new down-sampled sample at decimation instants,
         else ``None``."""
+        u = check_finite("reading u", u)
+        if u.ndim != 1 or (self._buf is not None and u.size != self._buf.shape[1]):
+            want = "1-D" if self._buf is None else f"({self._buf.shape[1]},) as before"
+            raise ValueError(f"reading u must be {want}, got shape {u.shape}")
         if self.factor == 1:
-            return np.asarray(u, dtype=float)
+            return u
         L = self.taps.size
         if self._buf is None:
-            self._buf = np.zeros((L, np.size(u)))
+            self._buf = np.zeros((L, u.size))
         buf = self._buf
         buf[:-1] = buf[1:]
         buf[-1] = u

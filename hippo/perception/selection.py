@@ -58,7 +58,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 from scipy.stats import spearmanr
 
-from hippo._checks import check_finite
+from hippo._checks import check_finite, check_int, check_real
 from hippo.perception.leak_sweep import SweepFeatures, sweep_features
 from hippo.perception.place_cells import RCSFAICA, RCSFAICAParams
 
@@ -128,6 +128,9 @@ def prediction_error(Y: np.ndarray, U: np.ndarray, n_fit: int, n_end: int | None
     variance (1 = no better than its mean; lower is better)."""
     Y = check_finite("Y", Y)
     U = check_finite("U", U)
+    horizon = check_int("horizon", horizon, lo=1)
+    if check_real("ridge", ridge) < 0:
+        raise ValueError(f"ridge must be finite and >= 0, got {ridge!r}")
     n_end = len(U) if n_end is None else n_end
     if Y.shape[0] != U.shape[0] or not 0 < n_fit < n_end - horizon - 2 or n_end > len(U):
         raise ValueError(f"n_fit ({n_fit}) and n_end ({n_end}) must leave a held-out block of "

@@ -35,7 +35,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hippo._checks import check_finite
+from hippo._checks import check_fields, check_finite, check_int
+
+#: the longest detection window (ticks; 5.5 h of 0.2 s ticks): the online guard keeps and
+#: scans that many readings every tick
+MAX_WINDOW = 100_000
 
 
 @dataclass(frozen=True)
@@ -50,14 +54,13 @@ class SensorGuardParams:
     ridge: float = 1e-4
 
     def __post_init__(self) -> None:
-        if int(self.window) < 2:
-            raise ValueError(f"window must be >= 2 ticks, got {self.window}")
+        check_fields(self)
+        check_int("window", self.window, lo=2, hi=MAX_WINDOW)
         for name in ("stuck_tol", "noise_ratio", "noise_floor", "ridge"):
             v = getattr(self, name)
-            if not np.isfinite(v) or v < 0:
+            if v < 0:
                 raise ValueError(f"{name} must be finite and >= 0, got {v}")
-        if int(self.max_dead) < 0:
-            raise ValueError(f"max_dead must be >= 0, got {self.max_dead}")
+        check_int("max_dead", self.max_dead, lo=0)
 
 
 class SensorGuard:
@@ -69,12 +72,17 @@ class SensorGuard:
     """
 
     def __init__(self, params: SensorGuardParams | None = None) -> None:
-        self.params = params or SensorGuardParams()
+        self.params = SensorGuardParams() if params is None else params
+        if not isinstance(self.params, SensorGuardParams):
+            raise TypeError(f"params must be SensorGuardParams, got {type(params).__name__}")
 
     def fit(self, U: np.ndarray) -> SensorGuard:
         U = self._check(U, fitted=False)
         if U.shape[0] < 2:
             raise ValueError("SensorGuard.fit needs at least 2 readings")
+        if U.shape[1] < 1:
+            raise ValueError("SensorGuard.fit needs at least 1 sensor, got U of shape "
+                             f"{U.shape}")
         self.mean_ = U.mean(axis=0)
         C = np.cov(U, rowvar=False).reshape(U.shape[1], U.shape[1])
         self.cov_ = C + self.params.ridge * np.eye(U.shape[1])

@@ -44,7 +44,7 @@ from typing import Any
 import numpy as np
 import scipy.linalg
 
-from hippo._checks import check_fields, check_finite
+from hippo._checks import as_array, check_fields, check_finite
 from hippo._estimator import NotFittedError, ParamsEstimator
 from hippo._threads import single_threaded_blas
 from hippo.perception.part_files import PartArrays, PartFile
@@ -127,9 +127,16 @@ class SFA(PartFile, ParamsEstimator):
         return quadratic_expansion((X - self.pre_mean_) / self.pre_scale_)
 
     def _check_X(self, X: Any, name: str = "X") -> np.ndarray:
-        X = np.asarray(X)
+        X = as_array(name, X)
         if X.ndim != 2:
             raise ValueError(f"{name} must be a 2-D array (time, features), got shape {X.shape}")
+        # complex values and strings are refused, not cast; an object array may hold numbers
+        # (scikit-learn's convention), its other objects fail the cast to float below
+        bad = None if X.dtype.kind != "O" else next(
+            (v for v in X.flat if isinstance(v, str | bytes | complex | np.complexfloating)), None)
+        if X.dtype.kind not in "biufO" or bad is not None:
+            held = "" if bad is None else f" holding {bad!r:.40} ({type(bad).__name__})"
+            raise ValueError(f"{name} must hold real numbers, got dtype {X.dtype}{held}")
         return check_finite(name, X, keep_float32=True)
 
     # ------------------------------------------------------------------ fit / transform

@@ -28,14 +28,14 @@ from scipy.signal import lfilter
 __all__ = ["SlowPool", "check_slow_pool", "with_pool"]
 
 
-def check_slow_pool(value: Any) -> float:
+def check_slow_pool(value: Any, name: str = "slow_pool") -> float:
     """``value`` as a time constant: 0 (off) or a finite real number ≥ 1 (ticks); else a
-    ValueError naming ``slow_pool``."""
+    ValueError naming ``name``."""
     if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
-        raise ValueError(f"slow_pool must be a number of ticks (0 = off), got {value!r}")
+        raise ValueError(f"{name} must be a number of ticks (0 = off), got {value!r}")
     v = float(value)
     if not (v == 0.0 or (math.isfinite(v) and v >= 1.0)):
-        raise ValueError(f"slow_pool must be 0 (off) or a time constant >= 1 tick, got {value!r}")
+        raise ValueError(f"{name} must be 0 (off) or a time constant >= 1 tick, got {value!r}")
     return v
 
 
@@ -43,7 +43,9 @@ def with_pool(Z: np.ndarray, tau: float, m0: np.ndarray | None = None
               ) -> tuple[np.ndarray, np.ndarray | None]:
     """``[Z, M]`` for features ``Z`` (T, d) and the pool ``M`` (T, d) run from ``m0`` (default:
     zeros), with the pool's last row (the state to continue from); ``tau = 0``: ``(Z, None)``.
-    Computed in float64, returned in ``Z``'s dtype."""
+    Computed in float64, returned in ``Z``'s dtype. ``tau`` must be 0 or >= 1 (below 1 the
+    pool oscillates or diverges)."""
+    tau = check_slow_pool(tau, "tau")
     if not tau:
         return Z, None
     beta = 1.0 / float(tau)

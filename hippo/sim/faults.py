@@ -23,16 +23,29 @@ Online (one reading per tick, e.g. between ``World.step`` and the place cells)::
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite
+from hippo._checks import check_finite, check_int, check_real
 
 #: the ways a sensor can be dead
 FAULT_MODES = ("stuck0", "stuck1", "noise")
+
+
+def _check_pair(item: tuple[Any, ...] | list[Any]) -> tuple[int, str]:
+    """One ``(index, mode)`` dead-sensor entry, checked: exactly two items, an integer index
+    >= 0, a known mode."""
+    if len(item) != 2:
+        raise ValueError(f"dead_sensors entries must be (index, mode), got {item!r}")
+    i = check_int("dead sensor index", item[0], lo=0)
+    mode = item[1]
+    if not isinstance(mode, str) or mode not in FAULT_MODES:
+        raise ValueError(f"dead sensor mode for sensor {i} must be one of "
+                         f"{', '.join(FAULT_MODES)}; got {mode!r}")
+    return i, str(mode)
 
 
 @dataclass(frozen=True)
@@ -45,38 +58,39 @@ class SensorFaults:
     start: int = 0
 
     def __post_init__(self) -> None:
+        if not isinstance(self.dead, tuple):
+            raise ValueError(f"dead must be a tuple of (index, mode) pairs, got {self.dead!r}")
         seen = set()
         for item in self.dead:
-            if len(item) != 2:
-                raise ValueError(f"dead_sensors entries must be (index, mode), got {item!r}")
-            i, mode = item
-            if not isinstance(i, int | np.integer) or i < 0:
-                raise ValueError(f"dead sensor index must be an integer >= 0, got {i!r}")
-            if mode not in FAULT_MODES:
-                raise ValueError(f"dead sensor mode for sensor {i} must be one of "
-                                 f"{', '.join(FAULT_MODES)}; got {mode!r}")
+            if not isinstance(item, tuple):
+                raise ValueError(f"dead_sensors entries must be (index, mode) tuples, got "
+                                 f"{item!r}")
+            i, _ = _check_pair(item)
             if i in seen:
                 raise ValueError(f"sensor {i} is listed as dead twice")
             seen.add(i)
-        noise = float(self.sensor_noise)
-        if not np.isfinite(noise) or noise < 0:
+        if check_real("sensor_noise", self.sensor_noise) < 0:
             raise ValueError(f"sensor_noise must be a finite s.d. >= 0, got {self.sensor_noise!r}")
-        if int(self.start) < 0:
-            raise ValueError(f"start must be a tick >= 0, got {self.start!r}")
+        check_int("start", self.start, lo=0)
 
     @classmethod
     def of(cls, dead_sensors: Mapping[int, str] | Sequence[Any] | None = None, *,
            sensor_noise: float = 0.0, start: int = 0) -> SensorFaults:
         """Build from ``dead_sensors`` as ``{index: mode}``, a sequence of ``(index, mode)``
-        pairs, or a sequence of indices (mode ``"stuck0"``)."""
+        pairs, or a sequence of indices (mode ``"stuck0"``). Indices must be integers (not
+        bools, floats or strings), modes one of :data:`FAULT_MODES`."""
         if dead_sensors is None:
             pairs: list[tuple[int, str]] = []
         elif isinstance(dead_sensors, Mapping):
-            pairs = [(int(i), str(m)) for i, m in dead_sensors.items()]
+            pairs = [_check_pair((i, m)) for i, m in dead_sensors.items()]
+        elif isinstance(dead_sensors, str | bytes) or not isinstance(dead_sensors, Iterable):
+            raise ValueError("dead_sensors must be {index: mode}, a sequence of (index, mode) "
+                             f"pairs or a sequence of indices, got {dead_sensors!r}")
         else:
-            pairs = [(int(d), "stuck0") if np.ndim(d) == 0 else (int(d[0]), str(d[1]))
+            pairs = [_check_pair(d) if isinstance(d, tuple | list) else _check_pair((d, "stuck0"))
                      for d in dead_sensors]
-        return cls(tuple(sorted(pairs)), float(sensor_noise), int(start))
+        return cls(tuple(sorted(pairs)), check_real("sensor_noise", sensor_noise),
+                   check_int("start", start, lo=0))
 
     @property
     def indices(self) -> list[int]:
@@ -111,6 +125,9 @@ class FaultInjector:
     """Apply :class:`SensorFaults` online, one reading per call (tick counted from 0)."""
 
     def __init__(self, faults: SensorFaults, seed: int | np.random.Generator = 0) -> None:
+        if not isinstance(faults, SensorFaults):
+            raise TypeError(f"faults must be SensorFaults (e.g. SensorFaults.of({{1: "
+                            f"'stuck0'}})), got {type(faults).__name__}")
         self.faults = faults
         self.rng = np.random.default_rng(seed)
         self.tick = 0

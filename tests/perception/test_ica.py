@@ -9,6 +9,7 @@ import pytest
 
 from hippo.perception.ica import FastICA, ICAConvergenceWarning, score_outputs
 from hippo.perception.ica_params import ICAParams
+from hippo.perception.place_cell_params import RCSFAICAParams
 
 
 def amari_index(P: np.ndarray) -> float:
@@ -119,6 +120,15 @@ def test_bad_input():
             ica.transform(bad)
     with pytest.raises(ValueError, match=r"^whiten=False needs n_components equal to the input"):
         FastICA(whiten=False, n_components=2).fit(S)
+
+
+def test_restarts_are_capped_like_the_command_line():
+    for bad in (10**9, 1001, 0, 2.5):
+        with pytest.raises(ValueError, match="n_restarts"):
+            FastICA(n_restarts=bad)
+    with pytest.raises(ValueError, match=r"ica_restarts: n_restarts must lie in \[1, 1000\]"):
+        RCSFAICAParams(ica_restarts=10**9)
+    assert ICAParams(n_restarts=1000).n_restarts == 1000
 
 
 def test_restarts_on_threads_give_the_same_result():

@@ -196,3 +196,49 @@ def test_decoding_accuracy_checks_its_neighbours_labels_and_mapping():
         mapping = np.array(mapping)
         with pytest.raises(ValueError, match="one location"):
             M.decoding_accuracy(Y, lab, mapping)
+
+
+def test_ridge_ceiling_refuses_arguments_it_used_to_trust():
+    X, cls = _slow_classes(T=400)
+    bad_calls = {
+        "alphas": [dict(alphas=(np.nan,)), dict(alphas=(np.inf,)), dict(alphas=()),
+                   dict(alphas=("a",)), dict(alphas=(0.0, 1.0)), dict(alphas=1.0)],
+        "gap": [dict(gap=-5), dict(gap=2.5), dict(gap=True)],
+        "folds": [dict(folds=2.5), dict(folds=1)],
+        "n_classes": [dict(n_classes=2.5)],
+        r"labels inside the mask must lie in \[0, n_classes=2\)": [dict(n_classes=2)],
+        "classes .* at most one class per sample": [dict(n_classes=10**9)],
+        "mask selects no samples": [dict(mask=np.zeros(400, bool))],
+    }
+    for match, calls in bad_calls.items():
+        for kw in calls:
+            with pytest.raises(ValueError, match=match):
+                M.ridge_ceiling(X, cls, **{"n_classes": 3, "gap": 5, **kw})
+    with pytest.raises(ValueError, match="at most one class per sample"):
+        M.ridge_ceiling(X, cls * 10**6, gap=5)          # labels that imply 2 million classes
+    c = M.ridge_ceiling(X, cls, 3, gap=5, alphas=np.array([1.0, 10.0]))  # an array is fine
+    assert c.balanced_accuracy == 1.0 and set(c.alpha) <= {1.0, 10.0}
+
+
+def test_place_metrics_refuse_bad_parameters():
+    labels, Y, loc = _track()
+    xy = np.column_stack([loc[labels, 0], np.zeros(labels.size)])
+    for bins in (0, -3, 2.5, True, 10**5, (8, 0), (8, 1.5), (1, 2, 3)):
+        with pytest.raises(ValueError, match="bins"):
+            M.place_fields_grid(xy, Y, bins=bins)
+    assert M.place_fields_grid(xy, Y, bins=np.int64(8))[1].shape == (8, 8)
+    for radius in (-1, 0, np.nan, np.inf, "15"):
+        with pytest.raises(ValueError, match="radius"):
+            M.location_neighbors(loc, radius=radius)
+    assert M.location_neighbors(loc, radius=15.0).sum() == 8 + 2 * 7
+    nb = M.location_neighbors(loc)
+    for threshold in (np.nan, np.inf, "4.5", None):
+        with pytest.raises(ValueError, match="threshold"):
+            M.localized_units(Y, labels, nb, threshold=threshold)
+    truth = np.array([True, True, False, False])
+    for name, pred, tr in (("pred", np.array([0.5, 1.0, 0.0, 0.0]), truth),
+                           ("truth", np.ones(4, bool), np.array([-1, -2, 0, 0])),
+                           ("truth", np.ones(4, bool), np.array([2, 2, 0, 0]))):
+        with pytest.raises(ValueError, match=f"{name} must hold booleans"):
+            M.balanced_accuracy(pred, tr)
+    assert M.balanced_accuracy(np.array([1, 0, 0, 0]), np.array([1, 1, 0, 0])) == 0.75

@@ -200,6 +200,18 @@ def test_prediction_error_known_answers():
         prediction_error(Y, U, 1999)
 
 
+def test_prediction_error_checks_ridge_and_horizon():
+    rng = np.random.default_rng(1)
+    U, Y = rng.uniform(size=(300, 3)), rng.normal(size=(300, 2))
+    for ridge in (-1, np.nan, np.inf, "0.1", None):
+        with pytest.raises(ValueError, match="ridge"):
+            prediction_error(Y, U, 200, ridge=ridge)
+    for horizon in (-5, 0, 1.5, True):
+        with pytest.raises(ValueError, match="horizon"):
+            prediction_error(Y, U, 200, horizon=horizon)
+    assert prediction_error(Y, U, 200, ridge=0, horizon=np.int64(2)) > 0.5
+
+
 def test_instability_known_answers():
     rng = np.random.default_rng(2)
     Y = rng.normal(size=(3000, 3))

@@ -65,3 +65,19 @@ def test_step_matches_clean_and_errors():
         g.clean(U[:, :5])
     with pytest.raises(ValueError, match="window"):
         SensorGuardParams(window=1)
+
+
+def test_params_are_checked_field_by_field():
+    for field, bad in (("window", 2.5), ("window", np.nan), ("window", True), ("max_dead", 1.7),
+                       ("stuck_tol", "x"), ("noise_ratio", np.inf), ("ridge", None)):
+        with pytest.raises(ValueError, match=f"SensorGuardParams.{field} must be"):
+            SensorGuardParams(**{field: bad})
+    for field, bad in (("window", 10**12), ("window", 1), ("max_dead", -1),
+                       ("noise_floor", -0.1)):
+        with pytest.raises(ValueError, match=field):
+            SensorGuardParams(**{field: bad})
+    assert SensorGuardParams(window=100_000).window == 100_000
+    with pytest.raises(TypeError, match="params must be SensorGuardParams"):
+        SensorGuard(params={"window": 3})
+    with pytest.raises(ValueError, match="at least 1 sensor"):
+        SensorGuard().fit(np.zeros((10, 0)))

@@ -91,6 +91,21 @@ def test_bad_input():
         sfa.transform(X[:, :3])
 
 
+def test_fit_refuses_complex_strings_and_odd_objects():
+    X, _ = _mixture(T=200)
+    for bad in (X + 1j, X.astype(str), X.astype(str).astype(object),
+                (X + 1j).astype(object)):
+        with pytest.raises(ValueError, match="X must hold real numbers"):
+            SFA(n_components=2).fit(bad)
+    bad = X.astype(object)
+    bad[0, 0] = {"foo": "bar"}
+    with pytest.raises(TypeError, match="X must hold real numbers"):
+        SFA(n_components=2).fit(bad)
+    # an object array of numbers is read as numbers (scikit-learn's convention)
+    np.testing.assert_array_equal(SFA(n_components=2).fit(X.astype(object)).W_,
+                                  SFA(n_components=2).fit(X).W_)
+
+
 def test_moments_in_chunks_equal_the_two_pass_sums():
     X, _ = _mixture(T=1000, seed=3)
     X = X + 1e6                                       # a large mean must not cancel the variance

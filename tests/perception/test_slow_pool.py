@@ -68,6 +68,12 @@ def test_bad_slow_pool_names_the_argument(bad):
         RCSFAICA.smc09(slow_pool=bad)
 
 
+@pytest.mark.parametrize("bad", [0.5, -1, float("nan"), float("inf"), True, "50"])
+def test_with_pool_refuses_a_time_constant_that_oscillates_or_diverges(bad):
+    with pytest.raises(ValueError, match="tau must be"):
+        with_pool(np.ones((5, 2)), bad)
+
+
 def test_slow_pool_zero_is_todays_model():
     """slow_pool = 0: the SFA input is exactly [u; x] and step/transform give exactly what a
     model without the field gives (default 0)."""

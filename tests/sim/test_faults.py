@@ -64,3 +64,36 @@ def test_with_faults_keeps_the_ground_truth():
     bad = with_faults(rec, {2: "stuck0"}, seed=0)
     assert np.all(bad.sensors[:, 2] == 0) and np.array_equal(bad.y, rec.y)
     assert np.array_equal(rec.sensors, _U(T))                  # the original is unchanged
+
+
+def test_fault_specs_are_checked_not_coerced():
+    bad = {
+        "dead sensor index must be an integer": [[1.7], [True], [(2.0, "noise")], {1.5: "stuck0"},
+                                                 ["1"]],
+        "dead sensor index must be an integer >= 0": [[-1]],
+        "dead_sensors must be": ["012", 3],
+        r"dead_sensors entries must be \(index, mode\)": [[(2, "noise", "x")], [(2,)]],
+        "mode for sensor 1": [[(1, 0)], {1: None}],
+    }
+    for match, specs in bad.items():
+        for spec in specs:
+            with pytest.raises(ValueError, match=match):
+                SensorFaults.of(spec)
+    for noise in (True, "0.1", np.nan, -0.1):
+        with pytest.raises(ValueError, match="sensor_noise"):
+            SensorFaults.of(sensor_noise=noise)
+    for start in (2.5, np.nan, "3", -1, True):
+        with pytest.raises(ValueError, match="start"):
+            SensorFaults.of(start=start)
+        with pytest.raises(ValueError, match="start"):
+            SensorFaults(start=start)
+    with pytest.raises(ValueError, match="index must be an integer"):
+        SensorFaults(dead=((True, "stuck0"),))
+    with pytest.raises(ValueError, match=r"entries must be \(index, mode\) tuples"):
+        SensorFaults(dead=([1, "stuck0"],))
+    with pytest.raises(TypeError, match="faults must be SensorFaults"):
+        FaultInjector({1: "stuck0"})
+    # the accepted forms, numpy integers and [index, mode] lists included
+    F = SensorFaults.of([np.int64(3), [1, "noise"]], sensor_noise=np.float64(0.1), start=np.int8(2))
+    assert F.dead == ((1, "noise"), (3, "stuck0")) and type(F.dead[1][0]) is int
+    assert F.sensor_noise == 0.1 and F.start == 2
