@@ -6,9 +6,11 @@ import dataclasses
 import math
 import numbers
 import operator
+import os
 import types
 import typing
 from collections.abc import Iterable
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -111,6 +113,17 @@ def check_int(name: str, value: Any, *, lo: int | None = None, hi: int | None = 
 def check_seed(name: str, value: Any) -> int:
     """A seed for ``numpy.random.default_rng``: an integer in [0, 2**63)."""
     return check_int(name, value, lo=0, hi=2**63 - 1)
+
+
+def check_path(name: str, value: Any) -> Path:
+    """``value`` (a ``str`` or ``os.PathLike``) as a ``Path``; an empty string is refused, since
+    ``Path("")`` is the current folder (an unset variable would write into the user's)."""
+    if not isinstance(value, str | os.PathLike):
+        raise TypeError(f"{name} must be a path (str or os.PathLike), got "
+                        f"{type(value).__name__}")
+    if not os.fspath(value):
+        raise ValueError(f"{name} must not be an empty path (use '.' for the current folder)")
+    return Path(value)
 
 
 def check_choice(name: str, value: Any, choices: Iterable[Any]) -> Any:

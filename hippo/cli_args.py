@@ -164,10 +164,11 @@ def _seed(text: str) -> int:
 def seed_ranges(text: str) -> list[int]:
     """Explicit seeds as ranges and lists, ``100-119`` or ``0-9,15``: distinct, non-negative,
     at most :data:`MAX_SEEDS` of them (counted before any list is built). Seeds are plain ASCII
-    digits: ``10_0`` or ``٣`` is refused, not read as another number."""
+    digits: ``10_0`` or ``٣`` is refused, not read as another number. One trailing comma is
+    allowed, as in every comma-separated option (``0-9,``)."""
     seeds: list[int] = []
     try:
-        for part in str(text).split(","):
+        for part in _items(str(text), ",") or [""]:
             a, sep, b = part.strip().partition("-")
             lo = _seed(a)
             hi = _seed(b) if sep else lo
@@ -246,6 +247,7 @@ def points(count: tuple[int, int], unit: str = "") -> Callable[[str], list[tuple
 
 def snapshot_dir(text: str) -> Path:
     """A folder written by :func:`hippo.snapshot.save_snapshot` (its manifest is there)."""
+    _not_empty(text)
     path = Path(text).expanduser()
     if not path.is_dir():
         raise argparse.ArgumentTypeError(f"{text!r} is not a folder")
@@ -283,8 +285,15 @@ def _first_existing(path: Path) -> Path:
     return p
 
 
+def _not_empty(text: str) -> None:
+    """``Path("")`` is the current folder: ``--out ""`` (an unset variable) wrote there."""
+    if not str(text):
+        raise argparse.ArgumentTypeError("got an empty path; name a folder ('.': the current one)")
+
+
 def out_dir(text: str) -> Path:
-    """An output folder: an existing folder, or one that can be created, writable."""
+    """An output folder (not an empty path): existing, or one that can be created; writable."""
+    _not_empty(text)
     path = Path(text).expanduser()
     if path.exists() and not path.is_dir():
         raise argparse.ArgumentTypeError(f"{text!r} is a file, not a folder")
@@ -317,7 +326,7 @@ PLACE_CELLS = ("learned", "ground-truth")
 EXPLORE_MIN, UNITS, PLACES, WAIT_S = (5.0, 600.0), (1, 200), (1, 256), (2.0, 120.0)
 
 
-class _Given(argparse.Action):
+class Given(argparse.Action):
     """Store the value and note that it was given (``<dest>_given``), so that an option a
     loaded snapshot fixes can be refused when it differs, not overridden in silence."""
 
@@ -380,7 +389,7 @@ def add_place_cells(parser: argparse.ArgumentParser, *, reanchor: bool = False) 
     """``--place-cells learned|ground-truth`` and ``--[no-]reanchor`` (default ``reanchor``):
     the options every closed-loop task shares."""
     parser.add_argument("--place-cells", choices=PLACE_CELLS, default="learned",
-                        action=_Given,
+                        action=Given,
                         help="learned from the robot's sensors, or Gaussian fields on the true "
                              "position (to measure what learning costs)")
     parser.add_argument("--reanchor", action=argparse.BooleanOptionalAction, default=reanchor,

@@ -53,6 +53,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from hippo._checks import check_path
 from hippo._threads import blas_budget, blas_threads
 
 try:  # the optional extra hippo[sweep]
@@ -190,7 +191,7 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
     except ImportError:  # pragma: no cover - the core install
         raise ImportError("hippo sweep needs Dask distributed: pip install 'hippo[sweep]'") \
             from None
-    out = Path(out)
+    out = check_path("out", out)
     (out / "cells").mkdir(parents=True, exist_ok=True)
     if int(retries) < 0:
         raise ValueError(f"retries must be >= 0, got {retries}")

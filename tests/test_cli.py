@@ -141,6 +141,9 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["run", "two-rooms", "--seeds", "0-100000000000"], "--seeds"),
     (["sweep", "two-rooms", "--seeds", "-2"], "--seeds"),
     (["sweep", "demo", "--param", "rho", "0.5", "2", "--", "--quick"], "--rho 2"),
+    # fifth fuzzing pass: an option --select alone reads, and what --units also takes
+    (["run", "two-rooms", "--select-units", "12"], "only with --select"),
+    (["run", "rooms", "--units", "abc"], "'auto'"),
 ]
 
 
@@ -208,3 +211,48 @@ def test_exit_status_from_a_real_process():
                           env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr and proc.stderr.count("\n") == 1
+
+
+#: fifth fuzzing pass: Path("") is the current folder, so each of these wrote into (and
+#: removed an old metrics.json and stale temporary files from) the user's folder
+EMPTY_PATHS = ([["run", name, "--out", ""] for name in cli.SCENARIOS]
+               + [["run", name, "--cache", ""] for name in ("two-rooms", "maze", "rooms")]
+               + [["run", "patrol", "--save", ""], ["run", "place-preference", "--load", ""],
+                  ["sweep", "demo", "--out", "", "--", "--quick"]])
+
+
+@pytest.mark.parametrize("argv", EMPTY_PATHS, ids=[" ".join(a) for a in EMPTY_PATHS])
+def test_an_empty_path_is_refused_before_any_work(argv, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(SystemExit) as stop:
+        cli.main(argv)
+    err = capsys.readouterr().err
+    option = argv[argv.index("") - 1]
+    assert stop.value.code == 2 and f"argument {option}: got an empty path" in err, err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_every_comma_separated_option_takes_one_trailing_comma():
+    """Fifth fuzzing pass: --delays 2, and --select-units 2, were accepted but --leak 0.1, and
+    --seeds 1, refused. One trailing comma is accepted everywhere; an empty item never."""
+    from hippo.cli_args import seed_ranges
+    from hippo.runner import parse_scenario_args
+
+    def parsed(name, *argv):
+        return parse_scenario_args(name, list(argv))[0]
+
+    assert parsed("two-rooms", "--leak", "0.05,0.15,").leak == (0.05, 0.15)
+    assert parsed("two-rooms", "--leak", "0.1,").leak == (0.1,)
+    assert parsed("two-rooms", "--seeds", "1,").seeds == [1]   # a list of one seed
+    assert parsed("two-rooms", "--seeds", "0-2,").seeds == [0, 1, 2]
+    assert parsed("rooms", "--leak", "0.1,").leak == [0.1]
+    assert parsed("timing-demo", "--delays", "2,").delays == [2.0]
+    assert parsed("two-rooms", "--select", "--select-units", "12,").select_units == [12]
+    assert seed_ranges("0-1,") == [0, 1]
+    for name, option, bad in (("two-rooms", "--leak", "0.1,,"), ("two-rooms", "--leak", ","),
+                              ("two-rooms", "--seeds", "1,,"), ("two-rooms", "--seeds", ","),
+                              ("rooms", "--leak", "0.1,,0.2"), ("timing-demo", "--delays", "2,,")):
+        with pytest.raises(SystemExit):
+            parsed(name, option, bad)
+    # the defaults still parse as before
+    assert parsed("two-rooms").leak == (0.08, 0.15) and parsed("two-rooms").seeds == 1

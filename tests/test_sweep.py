@@ -182,6 +182,15 @@ def test_failed_cells_are_retried_and_reported(tmp_path, client):
     assert again.ran == 2 and again.skipped == 4
 
 
+def test_an_empty_output_folder_is_refused(tmp_path, monkeypatch):
+    """Fifth fuzzing pass: run_sweep(cells, "") wrote cells/ and results.csv into the current
+    folder (Path("") is "."); it is refused before any folder is made or cluster started."""
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError, match="out must not be an empty path"):
+        run_sweep(grid("x", [0], {}), "", task=square_task)
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_cli_names_a_bad_parameter(capsys):
     with pytest.raises(SystemExit):
         sweep_main(["timing-demo", "--param", "no-such-option", "1"])

@@ -12,7 +12,8 @@ from typing import Any
 
 import numpy as np
 
-from hippo.cli_args import MAX_SEEDS, out_dir, plain_digits, seed_ranges
+from hippo._checks import check_path
+from hippo.cli_args import MAX_SEEDS, numbers, out_dir, plain_digits, seed_ranges
 from hippo.io import CorruptFileError, clean_stale_temps, save_json
 from hippo.sim.record import Recording
 
@@ -21,7 +22,7 @@ def prepare_out(out: str | Path) -> Path:
     """Create the output folder and return it as a Path; temporary files that a run killed
     mid-write left in it are removed (:func:`hippo.io.clean_stale_temps`), and so is an earlier
     run's ``metrics.json``: a run that fails leaves none, not another run's."""
-    path = Path(out)
+    path = check_path("out", out)
     path.mkdir(parents=True, exist_ok=True)
     clean_stale_temps(path)
     (path / "metrics.json").unlink(missing_ok=True)
@@ -171,7 +172,7 @@ def cached_recording(cache: str | Path | None, key: str, build: Callable[[], Rec
     or not ``ticks`` long, is recorded again (with a warning), never used."""
     if cache is None:
         return build()
-    path = Path(cache) / f"{key}.npz"
+    path = check_path("cache", cache) / f"{key}.npz"
     if path.exists():
         try:
             rec = Recording.load(path)
@@ -189,13 +190,11 @@ def cached_recording(cache: str | Path | None, key: str, build: Callable[[], Rec
     return rec
 
 
+#: one or more leak rates in (0, 1], read as every comma-separated option is
+_LEAK_RATES = numbers((1, None), 0.0, 1.0, lo_open=True)
+
+
 def parse_leak(text: str) -> tuple[float, ...]:
-    """``"0.05,0.15"`` -> ``(0.05, 0.15)``: one leak rate or one per group of neurons."""
-    try:
-        vals = tuple(float(v) for v in str(text).split(","))
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"--leak takes comma-separated numbers, got {text!r}"
-                                         ) from None
-    if not vals or not all(0.0 < v <= 1.0 for v in vals):
-        raise argparse.ArgumentTypeError(f"leak rates must lie in (0, 1], got {text!r}")
-    return vals
+    """``"0.05,0.15"`` -> ``(0.05, 0.15)``: one leak rate or one per group of neurons, each in
+    (0, 1] (one trailing comma allowed, as in ``--delays`` and ``--seeds``)."""
+    return tuple(_LEAK_RATES(text))

@@ -91,7 +91,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--rho", type=probability, default=0.008,
                         help="wall-side switch probability")
     parser.add_argument("--neurons", type=integer(1, 20_000), default=600, help="reservoir size")
-    parser.add_argument("--units", type=_units, default=0,
+    parser.add_argument("--units", type=_units, default=0, metavar="K|auto",
                         help="SFA and ICA units (default 0: twice the number of rooms; 'auto': "
                              "two per region of the SFA slowness spectrum, without labels)")
     parser.add_argument("--leak", type=numbers((1, None), 0.0, 1.0, lo_open=True),
@@ -124,7 +124,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _units(text: str) -> int | str:
-    return "auto" if text.strip() == "auto" else integer(0, 500)(text)
+    try:
+        return "auto" if text.strip() == "auto" else integer(0, 500)(text)
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(f"got {text!r}; needs an integer in [0, 500] or "
+                                         "'auto'") from None
 
 
 def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:

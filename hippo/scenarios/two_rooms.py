@@ -50,7 +50,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo.cli_args import distinct_integers, integer, probability, slow_pool
+from hippo.cli_args import Given, distinct_integers, integer, probability, slow_pool
 from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
 from hippo.io import save_npz
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
@@ -148,7 +148,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "beside SMC09's")
     parser.add_argument("--select-criterion", choices=CRITERIA, default=DEFAULT_CRITERION,
                         help="label-free criterion of --select")
-    parser.add_argument("--select-units", type=distinct_integers(1, 500),
+    parser.add_argument("--select-units", type=distinct_integers(1, 500), action=Given,
                         default=(ROOM_UNITS, SMC09_UNITS), metavar="K,K",
                         help="SFA/ICA unit counts --select chooses among (default: "
                              f"{ROOM_UNITS}, the room cell's, and {SMC09_UNITS}, SMC09's)")
@@ -164,6 +164,9 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
     if args.n_ica > args.n_sfa:
         parser.error(f"argument --n-ica: {args.n_ica} exceeds --n-sfa {args.n_sfa} "
                      "(ICA rotates the SFA outputs)")
+    if getattr(args, "select_units_given", False) and not args.select:
+        parser.error("argument --select-units: only with --select (the unit counts it chooses "
+                     "among); add --select or leave it out")
     if args.select and max(args.select_units) > args.neurons + 8:
         parser.error(f"argument --select-units: {max(args.select_units)} exceeds the "
                      f"{args.neurons + 8} inputs of SFA (--neurons + 8 sensors)")

@@ -9,20 +9,32 @@ that the start pose is free. The arenas of the experiments are in :mod:`hippo.si
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 
 import numpy as np
 
-from hippo._checks import check_finite
+from hippo._checks import check_finite, check_int
 from hippo.sim.arena import Arena, Point, Rect, Region, Zone
 
 __all__ = ["ArenaBuilder"]
+
+#: the largest floor colour id (recordings keep the floor colour as int16; ``Arena.zone_names``
+#: lists every id up to the largest)
+MAX_COLOUR = 255
+
+
+def _name(what: str, name: object) -> str:
+    """A name: a non-empty ``str`` (an int or None would end up in labels and GraphML)."""
+    if not isinstance(name, str) or not name:
+        raise ValueError(f"{what} name must be a non-empty string, got {name!r}")
+    return name
 
 
 class ArenaBuilder:
     """Fluent builder for :class:`Arena` (every method returns the builder)."""
 
     def __init__(self, name: str, width: float, height: float) -> None:
+        _name("arena", name)
         if not (math.isfinite(width) and math.isfinite(height) and width > 0 and height > 0):
             raise ValueError(f"arena size must be positive and finite, got {width} x {height}")
         self.name, self.width, self.height = name, float(width), float(height)
@@ -34,11 +46,13 @@ class ArenaBuilder:
         self._start: tuple[float, float, float] | None = None
 
     def wall(self, a: Sequence[float], b: Sequence[float]) -> ArenaBuilder:
-        """A straight wall segment from ``a`` to ``b``."""
+        """A straight wall segment from ``a`` to ``b``, inside the arena (edges included)."""
         pa = tuple(float(v) for v in check_finite("wall start", a))
         pb = tuple(float(v) for v in check_finite("wall end", b))
         if len(pa) != 2 or len(pb) != 2:
             raise ValueError("wall end points must be (x, y) pairs")
+        self._point("wall start", *pa)
+        self._point("wall end", *pb)
         if pa == pb:
             raise ValueError(f"wall from {pa} to {pb} has zero length")
         self._walls.append((pa, pb))  # type: ignore[arg-type]
@@ -81,14 +95,17 @@ class ArenaBuilder:
         return p  # type: ignore[return-value]
 
     def zone(self, name: str, rect: Rect, colour: int = 1) -> ArenaBuilder:
-        """A coloured floor rectangle; ``colour`` ≥ 1 is what the floor sensor reports."""
-        if colour < 1:
-            raise ValueError("zone colour ids start at 1 (0 is plain floor)")
-        self._zones.append(Zone(name, self._rect(f"zone {name!r}", rect), int(colour)))
+        """A coloured floor rectangle; ``colour`` (an integer in [1, :data:`MAX_COLOUR`]; 0 is the
+        plain floor) is what the floor sensor reports. Zone names are distinct."""
+        self._unique("zone", name, [z.name for z in self._zones])
+        colour = check_int(f"zone {name!r} colour", colour, lo=1, hi=MAX_COLOUR)
+        self._zones.append(Zone(name, self._rect(f"zone {name!r}", rect), colour))
         return self
 
     def region(self, name: str, *rects: Rect) -> ArenaBuilder:
-        """A named region made of one or more rectangles (for analysis only)."""
+        """A named region made of one or more rectangles (for analysis only); region names are
+        distinct."""
+        self._unique("region", name, [r.name for r in self._regions])
         if not rects:
             raise ValueError(f"region {name!r} needs at least one rectangle")
         self._regions.append(Region(name, tuple(self._rect(f"region {name!r}", r)
@@ -113,10 +130,20 @@ class ArenaBuilder:
         return self
 
     def landmark(self, name: str, x: float, y: float) -> ArenaBuilder:
-        """A named point a scenario can refer to (goal centre, checkpoint, start place)."""
-        self._landmarks[name] = tuple(float(v) for v in check_finite(f"landmark {name!r}",
-                                                                      (x, y)))
+        """A named point a scenario can refer to (goal centre, checkpoint, start place), inside
+        the arena; landmark names are distinct."""
+        self._unique("landmark", name, self._landmarks)
+        self._landmarks[name] = self._point(f"landmark {name!r}", x, y)
         return self
+
+    @staticmethod
+    def _unique(what: str, name: object, taken: Collection[object]) -> None:
+        """``name`` a valid name not already in ``taken`` (a second one overwrote or shadowed
+        the first in silence)."""
+        _name(what, name)
+        if name in taken:
+            raise ValueError(f"{what} {name!r} is already defined; {what} names must be "
+                             "distinct")
 
     def start(self, x: float, y: float, heading: float = 0.0) -> ArenaBuilder:
         """The robot's default start pose."""

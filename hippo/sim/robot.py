@@ -75,6 +75,11 @@ def get_sensor_model(name: str | SensorModel) -> SensorModel:
                          f"{', '.join(SENSOR_MODELS)}") from None
 
 
+#: the fastest wheel speed a robot may have, cm/s (200 times the e-puck's): the world takes
+#: one physics step per cm of travel, so a speed_max of 1e9 would take hours per tick
+MAX_SPEED = 1000.0
+
+
 @dataclass(frozen=True)
 class RobotParams:
     """Body, drive and proprioception of the robot (defaults: the e-puck of SMC09)."""
@@ -93,6 +98,9 @@ class RobotParams:
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
                 raise ValueError(f"RobotParams.{name} must be > 0, got {v}")
+        if self.speed_max > MAX_SPEED:
+            raise ValueError(f"RobotParams.speed_max must be <= {MAX_SPEED:g} cm/s, got "
+                             f"{self.speed_max!r} (the e-puck's is 5.08)")
         if not 0 <= self.speed_min < self.speed_max:
             raise ValueError("RobotParams needs 0 <= speed_min < speed_max")
         if self.odometry_noise < 0 or self.moving_threshold < 0:

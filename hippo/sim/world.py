@@ -33,6 +33,9 @@ _RAY_FILTER = pymunk.ShapeFilter(mask=_CAT_WALL | _CAT_OBSTACLE)
 _ANGLE = pymunk.Body.angle.fget
 _SET_VELOCITY = pymunk.Body.velocity.fset
 _SET_ANGULAR_VELOCITY = pymunk.Body.angular_velocity.fset
+#: the most physics steps one control tick may take (``dt`` x ``speed_max`` in cm, or the
+#: ``substeps`` asked for): more would make a tick last seconds (dt=1e7 asked for 5e7)
+MAX_SUBSTEPS = 10_000
 
 
 class Intervention(Protocol):
@@ -84,10 +87,15 @@ class World:
         self.robot = robot or RobotParams()
         self.sensors = get_sensor_model(sensors)
         self.dt = check_positive("dt", dt)
-        check_int("substeps", substeps, lo=1)
+        check_int("substeps", substeps, lo=1, hi=MAX_SUBSTEPS)
         # at most ~1 cm of travel per physics step, so contacts are resolved before the body
         # sinks into a wall (penetration is about one step's travel; 10x speed needs 11 steps)
-        self.substeps = max(int(substeps), math.ceil(self.robot.speed_max * self.dt / 1.0))
+        travel = self.robot.speed_max * self.dt / 1.0  # (inf for dt=1e308)
+        if travel > MAX_SUBSTEPS:
+            raise ValueError(f"dt={dt!r} s needs {travel:.3g} physics substeps per tick at "
+                             f"speed_max {self.robot.speed_max:g} cm/s (at most {MAX_SUBSTEPS})"
+                             f": dt must be <= {MAX_SUBSTEPS / self.robot.speed_max:g} s")
+        self.substeps = max(int(substeps), math.ceil(travel))
         ang = self.sensors.angles
         self._ray_cos, self._ray_sin = np.cos(ang).tolist(), np.sin(ang).tolist()
         self._span = self.sensors.range_max - self.sensors.range_min

@@ -83,3 +83,21 @@ def test_the_closing_line_names_only_the_files_the_run_wrote(tmp_path, capsys):
     (out / "run.npz").write_bytes(b"new")
     write_metrics(out, {})
     assert capsys.readouterr().err.strip().endswith("(metrics.json, run.npz, 2 figures)")
+
+
+def test_an_empty_output_or_cache_path_is_refused(tmp_path, monkeypatch):
+    """Fifth fuzzing pass: Path("") is the current folder; the library helpers refuse an empty
+    path as the command line does, before writing or removing anything."""
+    from hippo.scenarios._common import prepare_out
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "metrics.json").write_text("{}")   # what prepare_out("") used to delete
+    calls = []
+    with pytest.raises(ValueError, match="out must not be an empty path"):
+        prepare_out("")
+    with pytest.raises(ValueError, match="cache must not be an empty path"):
+        cached_recording("", "k", _build(20, calls), 20)
+    with pytest.raises(TypeError, match="out must be a path"):
+        prepare_out(None)
+    assert calls == [] and [p.name for p in tmp_path.iterdir()] == ["metrics.json"]
+    assert prepare_out(tmp_path / "out") == tmp_path / "out"   # a real folder still works

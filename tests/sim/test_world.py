@@ -387,3 +387,62 @@ def test_a_non_finite_heading_is_refused_where_it_is_given():
     assert world.pose == before and world.tick == 1
     world.step((2.0, 2.0))
     assert world.tick == 2 and math.isfinite(world.pose[2])
+
+
+def test_a_tick_never_needs_more_than_max_substeps():
+    """Fifth fuzzing pass: World(dt=1e7) asked for 50.8 million physics substeps per tick and
+    RobotParams(speed_max=1e7) took 4 s per step; both are refused, naming the value."""
+    from hippo.sim.robot import MAX_SPEED
+    from hippo.sim.world import MAX_SUBSTEPS
+
+    arena = arenas.two_rooms()
+    for dt in (1e7, 1e308, MAX_SUBSTEPS / 5.08 * 1.01):
+        with pytest.raises(ValueError, match=r"dt=.* physics substeps per tick.*dt must be <="):
+            World(arena, dt=dt)
+    with pytest.raises(ValueError, match=r"substeps must be an integer in \[1, 10000\]"):
+        World(arena, substeps=10**9)
+    for speed in (1e7, MAX_SPEED * 1.01, math.inf):
+        with pytest.raises(ValueError, match=r"RobotParams\.speed_max"):
+            RobotParams(speed_max=speed)
+    with pytest.raises(ValueError, match=r"dt=11 s needs 1.1e\+04 physics substeps"):
+        World(arena, robot=RobotParams(speed_max=MAX_SPEED), dt=11)
+    # the settings in use are unchanged: 5 substeps at dt 0.2, more only as travel needs
+    assert World(arena).substeps == 5 and World(arena, dt=1.0).substeps == 6
+    assert World(arena, dt=1000.0).substeps == 5080
+
+
+def test_builder_refuses_what_it_had_coerced_or_overwritten():
+    """Fifth fuzzing pass: colour=1.5 became 1 and True 1; a landmark far outside the arena,
+    a repeated landmark (overwritten), zone or region name, a wall outside the arena and a
+    non-string arena name were all accepted."""
+    from hippo.sim.flats import random_flat
+
+    def walled():
+        return ArenaBuilder("b", 100, 80).outer_walls()
+
+    for colour in (1.5, True, math.nan, "2", 2**70, 0, -1, 256):
+        with pytest.raises(ValueError, match="zone 'g' colour must be an integer"):
+            walled().zone("g", (1, 1, 5, 5), colour=colour)
+    assert walled().zone("g", (1, 1, 5, 5), colour=255).build().zones[0].colour == 255
+    with pytest.raises(ValueError, match=r"landmark 'L' \(1000000.0, -5.0\) lies outside"):
+        walled().landmark("L", 1e6, -5)
+    with pytest.raises(ValueError, match="landmark 'L' is already defined"):
+        walled().landmark("L", 1, 5).landmark("L", 2, 2)
+    with pytest.raises(ValueError, match="zone 'g' is already defined"):
+        walled().zone("g", (1, 1, 5, 5)).zone("g", (6, 6, 9, 9), colour=2)
+    with pytest.raises(ValueError, match="region 'r' is already defined"):
+        walled().region("r", (1, 1, 5, 5)).region("r", (6, 6, 9, 9))
+    with pytest.raises(ValueError, match=r"wall end \(200.0, 0.0\) lies outside the 100 x 80"):
+        walled().wall((0, 0), (200, 0))
+    with pytest.raises(ValueError, match="wall start"):
+        walled().wall((-1, 10), (10, 10))
+    for name in (3, None, ""):
+        with pytest.raises(ValueError, match="arena name must be a non-empty string"):
+            ArenaBuilder(name, 100, 80)
+    with pytest.raises(ValueError, match="landmark name must be a non-empty string"):
+        walled().landmark(7, 1, 1)
+    # every built-in arena and generated flats still build (walls on the edges are inside)
+    for name in arenas.ARENAS:
+        arenas.get(name)
+    for n_rooms, seed in ((2, 0), (3, 5), (6, 1)):
+        random_flat(n_rooms, seed)
