@@ -33,6 +33,18 @@ from hippo._checks import check_int, check_positive
 __all__ = ["HeadingSectors"]
 
 
+def _finite(name: str, value: float, unit: str, *, lo: float = -math.inf) -> float:
+    """``value`` unless it is no finite number >= ``lo`` (a ``ValueError`` naming ``name``)."""
+    try:
+        ok = lo <= value < math.inf  # (NaN fails the comparison)
+    except TypeError:
+        ok = False
+    if not ok or isinstance(value, bool):
+        rel = "" if lo == -math.inf else f" >= {lo:g}"
+        raise ValueError(f"{name} must be a finite number{rel} ({unit}), got {value!r}")
+    return value
+
+
 class HeadingSectors:
     """Splits place activities by the sector of the direction of travel (module docstring).
 
@@ -60,10 +72,12 @@ class HeadingSectors:
     def nearest(self, heading: float) -> int:
         """The sector whose centre is nearest ``heading`` (sector ``b`` is centred on
         ``b · 2π / n``)."""
-        return math.floor(heading / self.width + 0.5) % self.n
+        return math.floor(_finite("heading", heading, "rad") / self.width + 0.5) % self.n
 
     def update(self, heading: float, step: float) -> int:
         """The sector after a tick that ran ``step`` cm with heading ``heading`` (rad)."""
+        _finite("heading", heading, "rad")
+        _finite("step", step, "cm", lo=0.0)
         if self.sector is None:
             self.sector = self.nearest(heading)
         elif step >= self.min_step:

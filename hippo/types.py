@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 __all__ = [
-    "GroundTruth", "Mode", "Observation", "StateId", "StateKind", "Transition",
+    "MAX_STATE_ID", "GroundTruth", "Mode", "Observation", "StateId", "StateKind", "Transition",
     "check_state_id", "check_transition", "wrap_angle",
 ]
 
@@ -35,13 +35,18 @@ Transition = tuple[int, int]
 """A transition key ``(a, b)``: the id of the state left and of the state entered."""
 
 
+MAX_STATE_ID = 2**63 - 1
+"""The largest state id: ids are stored as int64 (index arrays, GraphML files)."""
+
+
 def check_state_id(name: str, state: object) -> int:
     """Return ``state`` as an ``int`` state id, or raise ``ValueError`` naming ``name``.
 
-    A state id is an integer >= 0 (Python or numpy integer; ``bool`` and floats are refused,
-    even when integral, so that a mask or a mean never passes for an id).
+    A state id is an integer in [0, :data:`MAX_STATE_ID`] (Python or numpy integer; ``bool``
+    and floats are refused, even when integral, so that a mask or a mean never passes for an
+    id; a larger one would overflow the int64 arrays the ids are kept in).
     """
-    if type(state) is int and state >= 0:  # the usual case (every tick), no general rules
+    if type(state) is int and 0 <= state <= MAX_STATE_ID:  # the usual case (every tick)
         return state
     if isinstance(state, bool | np.bool_):
         raise ValueError(f"{name} must be an integer state id, got {state!r}")
@@ -51,6 +56,9 @@ def check_state_id(name: str, state: object) -> int:
         raise ValueError(f"{name} must be an integer state id, got {state!r}") from None
     if s < 0:
         raise ValueError(f"{name} must be a state id >= 0, got {state!r}")
+    if s > MAX_STATE_ID:
+        raise ValueError(f"{name} must be a state id <= 2**63 - 1 (ids are stored as int64), "
+                         f"got {state!r}")
     return int(s)
 
 

@@ -75,6 +75,26 @@ def test_impossible_parameters_are_refused(kw, match):
         HeadingSectors(**kw)
 
 
+@pytest.mark.parametrize("heading, step, match", [
+    (math.nan, 1.0, r"heading must be a finite number \(rad\), got nan"),
+    (math.inf, 1.0, r"heading must be a finite number \(rad\), got inf"),
+    ("1", 1.0, r"heading must be a finite number"),
+    (0.0, math.nan, r"step must be a finite number >= 0 \(cm\), got nan"),
+    (0.0, -1.0, r"step must be a finite number >= 0 \(cm\), got -1.0"),
+])
+def test_a_heading_or_step_that_is_no_finite_number_is_refused(heading, step, match):
+    s = HeadingSectors(4)
+    with pytest.raises(ValueError, match=match):  # before any sector is taken
+        s.update(heading, step)
+    assert s.sector is None
+    s.update(math.pi / 2, 1.0)
+    with pytest.raises(ValueError, match=match):  # (NaN used to keep the last sector silently)
+        s.split(np.ones(3), heading, step)
+    assert s.sector == 1
+    with pytest.raises(ValueError, match="heading must be a finite number"):
+        s.nearest(math.nan)
+
+
 @pytest.mark.parametrize("bad", [0, -1, 1.5])
 def test_brain_params_refuse_impossible_sector_counts(bad):
     with pytest.raises(ValueError, match="heading_sectors"):

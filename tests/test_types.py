@@ -43,6 +43,10 @@ def test_one_state_id_rule_everywhere():
             check_state_id("s", bad)
     with pytest.raises(ValueError, match=">= 0"):
         check_state_id("s", -1)
+    assert check_state_id("s", 2**63 - 1) == 2**63 - 1  # ids are stored as int64
+    for big in (2**63, np.uint64(2**63), 2**70):
+        with pytest.raises(ValueError, match=r"s must be a state id <= 2\*\*63 - 1"):
+            check_state_id("s", big)
     assert check_transition("t", (1, 2)) == (1, 2)
     with pytest.raises(ValueError, match="pair"):
         check_transition("t", 5)

@@ -168,21 +168,22 @@ class Drives:
         """Advance every drive by ``dt`` seconds: ``d += ε (1 − d) dt``, or hold at 0 if inhibited.
 
         ``inhibited`` names the drives that the non-occurrence signal inhibits during this tick
-        (on top of those held by :meth:`inhibit`).
+        (on top of those held by :meth:`inhibit`). Every drive's step is checked before any
+        level changes.
         """
         dt = check_positive("dt", dt, allow_zero=True)
         held = self._inhibited
         if inhibited:
             held = held | {self._check(n) for n in inhibited}
-        for name, p in self._params.items():
-            if name in held:
-                self._level[name] = 0.0
-                continue
-            k = p.epsilon * dt
+        steps = [(name, p.epsilon * dt) for name, p in self._params.items() if name not in held]
+        for name, k in steps:
             if k > 1.0:
                 raise ValueError(
                     f"epsilon*dt = {k:g} > 1 for drive {name!r}: the Euler step would overshoot 1; "
                     "use a smaller dt")
+        for name in held:
+            self._level[name] = 0.0
+        for name, k in steps:
             d = self._level[name]
             self._level[name] = d + k * (1.0 - d)
 

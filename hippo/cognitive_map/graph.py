@@ -208,6 +208,9 @@ class TransitionGraph:
         else:
             px, py = self._states[s]  # type: ignore[misc]
             pos = (px + (x - px) / (n + 1), py + (y - py) / (n + 1))
+            if not (math.isfinite(pos[0]) and math.isfinite(pos[1])):  # the map could not load
+                raise ValueError(f"position of state {s}: {position!r} would overflow the "
+                                 f"running mean of {n} at {(px, py)!r}")
         self._states[s] = pos
         self._pos_n[s] = n + 1
         self.version += 1
@@ -253,7 +256,7 @@ class TransitionGraph:
         else:
             if node.get("inferred"):  # experience replaces the guess (a first real sample)
                 node.update(count=0, n_wait=0, n_delay=0, delay=None, heading=None,
-                            inferred=False)
+                            heading_r=None, distance=None, inferred=False)
             merge_repeat(node, act, delay, time)
             self.version += 1
         return t

@@ -18,7 +18,7 @@ import networkx as nx
 
 from hippo.cognitive_map.actions import MOVE, WAIT
 from hippo.io import CorruptFileError, atomic_write_text
-from hippo.types import Transition
+from hippo.types import MAX_STATE_ID, Transition
 
 __all__ = ["GRAPHML_FORMAT", "NODE_ATTRS", "node_id", "read_graphml", "write_graphml"]
 
@@ -112,7 +112,10 @@ def read_graphml(path: str | os.PathLike, cls: type) -> Any:
 def _read_states(graph: Any, text: Any) -> None:
     if not isinstance(text, str):
         raise ValueError(f"the graph attribute 'states' must be a JSON string, got {text!r}")
-    rows = json.loads(text)
+    try:
+        rows = json.loads(text)
+    except RecursionError:  # "[[[[..." nested beyond Python's limit
+        raise ValueError("the graph attribute 'states' is JSON nested too deeply") from None
     if not isinstance(rows, list):
         raise ValueError("'states' must be a list of [state, x, y, n]")
     for row in rows:
@@ -136,10 +139,13 @@ def _read_states(graph: Any, text: Any) -> None:
 
 
 def _file_int(name: str, v: Any, lo: int | None = None) -> int:
+    """An integer of the file; at most ``MAX_STATE_ID`` (ids and counts are int64 in a map)."""
     if isinstance(v, bool) or not isinstance(v, int):
         raise ValueError(f"{name} must be an integer, got {v!r}")
     if lo is not None and v < lo:
         raise ValueError(f"{name} must be >= {lo}, got {v}")
+    if v > MAX_STATE_ID:
+        raise ValueError(f"{name} must be <= 2**63 - 1, got {v}")
     return v
 
 
@@ -177,10 +183,11 @@ def _checked_node(nid: str, d: dict[str, Any]) -> dict[str, Any]:
     for k in _FLOAT_ATTRS:
         at[k] = _file_float(f"{k} of {nid!r}", d[k]) if k in d else None
     moves = count - at["n_wait"]
-    if moves > 0:
-        for k in ("heading", "heading_r", "distance"):
-            if at[k] is None:
-                raise ValueError(f"node {nid!r} has {moves} move(s) but no {k}")
+    for k in ("heading", "heading_r", "distance"):
+        if moves > 0 and at[k] is None:
+            raise ValueError(f"node {nid!r} has {moves} move(s) but no {k}")
+        if moves == 0 and at[k] is not None:
+            raise ValueError(f"node {nid!r} has no move but a {k}")
     if at["heading"] is not None and not -math.pi < at["heading"] <= math.pi:
         raise ValueError(f"heading of {nid!r} must lie in (-pi, pi], got {at['heading']}")
     if at["heading_r"] is not None and not 0.0 <= at["heading_r"] <= 1.0:

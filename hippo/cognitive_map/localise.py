@@ -40,7 +40,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from hippo._checks import check_fields, check_positive
+from hippo._checks import check_fields, check_positive, check_real
 from hippo.cognitive_map.graph import TransitionGraph
 
 __all__ = ["LocaliserParams", "MapLocaliser"]
@@ -89,8 +89,8 @@ class MapLocaliser:
         self.reset(0.0)
 
     def reset(self, t: float) -> None:
-        """The robot was lifted at time ``t`` (s): nothing it perceives is trusted yet."""
-        self.t0 = float(t)
+        """The robot was lifted at time ``t`` (s, finite): nothing it perceives is trusted yet."""
+        self.t0 = check_real("t", t)
         self.localised = False
         self.events = 0               # place changes seen since the reset
         self.localised_at: float | None = None
@@ -107,7 +107,7 @@ class MapLocaliser:
         not. That change is usually the jump's own switch to the place the robot is in, not an
         entry into it: :attr:`by_anchor` says so, and the brain then times nothing from it.
         """
-        self._anchored_at = float(t)
+        self._anchored_at = check_real("t", t)
 
     def check(self, t: float) -> bool:
         """Apply the ``max_time`` limit; returns :attr:`localised`."""

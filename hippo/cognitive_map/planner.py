@@ -47,7 +47,7 @@ from typing import Any, Literal
 import networkx as nx
 import numpy as np
 
-from hippo._checks import check_fields, check_positive, check_range
+from hippo._checks import check_fields, check_int, check_positive, check_range, check_seed
 from hippo.cognitive_map.drives import Drives
 from hippo.cognitive_map.graph import Transition, TransitionGraph, TransitionIndex
 from hippo.cognitive_map.inputs import drive_input, effective_levels, inferred_mask
@@ -257,7 +257,7 @@ class Planner:
         self.params = PlannerParams() if params is None else params
         if not isinstance(self.params, PlannerParams):
             raise TypeError(f"params must be PlannerParams, got {self.params!r}")
-        self.rng = np.random.default_rng(seed)
+        self.rng = np.random.default_rng(None if seed is None else check_seed("seed", seed))
         self.n_propagations = 0
         self._key: tuple[Any, ...] | None = None
         self._levels: dict[str, float] | None = None
@@ -336,10 +336,11 @@ class Planner:
         up to and including the first goal transition whose activity is its own drive input.
 
         Empty when no drive activity reaches ``state``. Along the path the activity grows by
-        ``1/w`` per step, so it ends after at most ``len(graph)`` steps.
+        ``1/w`` per step, so it ends after at most ``len(graph)`` steps (or ``max_steps``, an
+        integer >= 1).
         """
+        limit = len(graph) if max_steps is None else check_int("max_steps", max_steps, lo=1)
         act = self.activity(graph, drives)
-        limit = len(graph) if max_steps is None else int(max_steps)
         path: list[Transition] = []
         s = state
         while len(path) < limit:

@@ -24,7 +24,22 @@ import numpy as np
 
 from hippo._checks import check_finite
 
-__all__ = ["StateLevels"]
+__all__ = ["PLACE_MAX", "StateLevels"]
+
+#: the largest place activity magnitude accepted. Every place source gives far less (template
+#: and ground-truth cells and prototypes lie in [0, 1], ICA units have unit variance on their
+#: training data, the timing demo adds noise of sd <= 10); one outlier beyond it would ruin the
+#: pooled running statistics for good (the winner would never change again).
+PLACE_MAX = 1e3
+
+
+def _refuse_outlier(a: np.ndarray) -> None:
+    """``ValueError`` naming the largest place activity beyond ``PLACE_MAX`` (if any)."""
+    big = float(np.abs(a).max()) if a.size else 0.0
+    if big > PLACE_MAX:
+        raise ValueError(f"place activities must lie in [-{PLACE_MAX:g}, {PLACE_MAX:g}], got "
+                         f"one of magnitude {big:.3g} (unit {int(np.abs(a).argmax())}): no "
+                         "place source gives it, and it would ruin the running statistics")
 
 
 class StateLevels:
@@ -42,6 +57,7 @@ class StateLevels:
             a = check_finite("place activities", place)
             if a.ndim != 1:
                 raise ValueError(f"place activities must be a 1-D vector, got shape {a.shape}")
+            _refuse_outlier(a)
         if a.size < self._place_ids.size:
             raise ValueError(f"place activity vector shrank from {self._place_ids.size} to "
                              f"{a.size} units; place states are never removed")
@@ -59,10 +75,14 @@ class StateLevels:
             total = float(np.add.reduce(d))
             if not math.isfinite(total):  # names a NaN or inf (finite values that overflow pass)
                 check_finite("place activities", a)
+            sq = float(np.add.reduce(d * d))
+            # |a_i| <= |d_i| + |mean| <= sqrt(sq) + |mean|: the exact check only past that bound
+            if not math.sqrt(sq) + abs(mean) <= PLACE_MAX:
+                _refuse_outlier(a)
             z = d / math.sqrt(var)
             # the means as np.mean takes them (sum / count), without its wrapper
             m = mean + rate * (total / d.size)
-            v = max((1.0 - rate) * (var + rate * (float(np.add.reduce(d * d)) / d.size)), 1e-12)
+            v = max((1.0 - rate) * (var + rate * (sq / d.size)), 1e-12)
             self._pool = (m, v)
         else:
             z = a

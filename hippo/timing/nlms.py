@@ -112,7 +112,9 @@ class NLMS:
     def __init__(self, n_out: int, n_in: int, params: NLMSParams | None = None) -> None:
         if int(n_out) != n_out or n_out < 1 or int(n_in) != n_in or n_in < 1:
             raise ValueError(f"n_out and n_in must be integers >= 1, got {n_out!r}, {n_in!r}")
-        self.params = params or NLMSParams()
+        self.params = NLMSParams() if params is None else params
+        if not isinstance(self.params, NLMSParams):
+            raise TypeError(f"params must be NLMSParams, got {self.params!r}")
         self.n_out, self.n_in = int(n_out), int(n_in)
         self.reset()
 
@@ -130,15 +132,23 @@ class NLMS:
         return self.weights @ cs
 
     def step(self, cs: np.ndarray, us: np.ndarray, dt: float) -> np.ndarray:
-        """One tick: eq. 3, eq. 2, then an Euler step of eq. 1. Returns ``X`` before the step."""
+        """One tick: eq. 3, eq. 2, then an Euler step of eq. 1. Returns ``X`` before the step.
+
+        ``ValueError`` when the Euler step is unstable, ``alpha*dt*(gamma + sigma2) >= 2`` (the
+        bound on ``alpha*dt*eta`` for a US in [0, 1]; the weights would diverge), as
+        :class:`hippo.timing.transitions.TransitionCells` refuses it.
+        """
         cs = check_finite("cs", cs)
         us = check_finite("us", us)
         dt = check_positive("dt", dt)
+        p = self.params
+        if p.alpha * dt * (p.gamma + p.sigma2) >= 2.0:
+            raise ValueError(f"NLMS step alpha*dt*eta = {p.alpha * dt * (p.gamma + p.sigma2):.3g}"
+                             " >= 2 is unstable; lower params.alpha or dt")
         if cs.shape != (self.n_in,):
             raise ValueError(f"cs must have shape ({self.n_in},), got {cs.shape}")
         if us.shape != (self.n_out,):
             raise ValueError(f"us must have shape ({self.n_out},), got {us.shape}")
-        p = self.params
         self.m_us = sliding_mean(self.m_us, us, p.gamma)
         self.eta = learning_modulation(us, self.m_us, p.sigma2)
         self.weights, x = nlms_update(self.weights, cs, us, self.eta, p, dt)

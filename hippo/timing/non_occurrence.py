@@ -31,6 +31,8 @@ import math
 from collections.abc import Hashable, Mapping
 from dataclasses import dataclass
 
+import numpy as np
+
 from hippo._checks import check_fields, check_positive, check_range
 
 __all__ = ["NonOccurrence", "NonOccurrenceParams"]
@@ -64,8 +66,11 @@ class NonOccurrenceParams:
 
 
 def _finite(key: Hashable, value: object) -> float:
-    """A prediction as a float, or ``ValueError`` naming its key (one scalar check per key)."""
+    """A prediction as a float, or ``ValueError`` naming its key (one scalar check per key).
+    A number only: a string such as ``"0.5"`` or a bool, which ``float`` would take, is none."""
     try:
+        if isinstance(value, str | bytes | bool | np.bool_):
+            raise TypeError
         x = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
         raise ValueError(f"prediction of {key!r} must be a number, got {value!r}") from None

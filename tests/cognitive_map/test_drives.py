@@ -193,3 +193,18 @@ def test_a_zero_step_changes_nothing_and_a_bad_dt_is_named():
         d.step(-0.1)
     with pytest.raises(ValueError, match=r"epsilon\*dt = 1.5 > 1 .*use a smaller dt$"):
         d.step(3.0)
+
+
+def test_a_step_too_long_for_one_drive_changes_no_level():
+    d = Drives({"a": DriveParams(epsilon=0.1), "b": DriveParams(epsilon=10.0)})
+    d.inhibit("b")  # an inhibited drive is held at 0, never stepped: no check
+    d.step(0.2)
+    assert d.levels == pytest.approx({"a": 0.02, "b": 0.0})
+    d.release("b")
+    d.set_level("a", 0.3)
+    with pytest.raises(ValueError, match=r"epsilon\*dt = 2 > 1 for drive 'b'"):
+        d.step(0.2)
+    assert d.levels == {"a": 0.3, "b": 0.0}  # 'a' (stepped first) did not move
+    with pytest.raises(ValueError, match="for drive 'b'"):
+        d.step(0.2, inhibited=["a"])
+    assert d.levels == {"a": 0.3, "b": 0.0}  # nor was it held at 0

@@ -129,6 +129,17 @@ def test_positions_and_states():
     assert g.observe_position(7, (3.5, 0.0)) == pytest.approx((2.5, -1.0))  # set counts once
 
 
+def test_a_position_that_overflows_the_running_mean_is_refused(tmp_path):
+    """(1e308 then -1e308: x - mean overflows to -inf, a map to_graphml would write and
+    from_graphml refuse.) The position is refused and the state keeps its mean."""
+    g = TransitionGraph()
+    g.observe_position(0, (1e308, 0.0))
+    with pytest.raises(ValueError, match=r"position of state 0: .* would overflow the running"):
+        g.observe_position(0, (-1e308, 0.0))
+    assert g.position(0) == (1e308, 0.0) and g._pos_n[0] == 1
+    assert TransitionGraph.from_graphml(g.to_graphml(tmp_path / "g.graphml")).same_as(g)
+
+
 def test_structure_version_grows_on_structural_changes_only():
     g = TransitionGraph()
     g.add_transition(0, 1, (0.0, 1.0))

@@ -33,6 +33,9 @@ def _load_edited(tmp_path, h):
     ("0->1", "action", "wait", r"action 'wait' is not the majority of 0 wait\(s\) in 1"),
     ("0->1", "count", 1.5, r"count .*must be an integer, got 1.5"),
     ("0->1", "a", -1, r"must be >= 0, got -1"),
+    ("0->1", "a", 2**63, r"a of '0->1' must be <= 2\*\*63 - 1"),
+    ("1->2", "heading", 0.5, r"node '1->2' has no move but a heading"),
+    ("1->2", "distance", 3.0, r"node '1->2' has no move but a distance"),
 ])
 def test_an_edited_transition_is_refused_by_name(tmp_path, node, field, value, message):
     h = _saved(tmp_path)
@@ -45,12 +48,14 @@ def test_an_edited_transition_is_refused_by_name(tmp_path, node, field, value, m
     ([0, 1.0, 2.0, -1], r"observation count of state 0 must be >= 0, got -1"),
     ([-1, None, None, 0], r"state must be >= 0, got -1"),
     ([0, 1.0, 2.0, True], r"observation count of state 0 must be an integer, got True"),
+    ([2**63, None, None, 0], r"state must be <= 2\*\*63 - 1"),
+    ("[" * 100_000 + "]" * 100_000, r"'states' is JSON nested too deeply"),
 ])
 def test_an_edited_state_row_is_refused_by_name(tmp_path, row, message):
     h = _saved(tmp_path)
     rows = json.loads(h.graph["states"])
     rows[0] = row
-    h.graph["states"] = json.dumps(rows)
+    h.graph["states"] = row if isinstance(row, str) else json.dumps(rows)
     with pytest.raises(CorruptFileError, match=message):
         _load_edited(tmp_path, h)
 

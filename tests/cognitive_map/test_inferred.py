@@ -53,6 +53,17 @@ def test_the_first_real_move_replaces_the_guess():
     assert g.count((1, 0)) == 2 and g.attributes((1, 0))["distance"] == pytest.approx(21.0)
 
 
+def test_a_real_wait_replaces_the_guess_and_keeps_no_heading(tmp_path):
+    g = TransitionGraph()
+    g.add_transition(0, 1, (1.0, 30.0))
+    g.infer_reverse((0, 1))
+    g.add_transition(1, 0, "wait", 3.0)  # the robot waited there: no way back was made
+    a = g.attributes((1, 0))
+    assert a["action"] == "wait" and a["count"] == 1 and a["delay"] == 3.0
+    assert a["heading"] is None and a["heading_r"] is None and a["distance"] is None
+    assert TransitionGraph.from_graphml(g.to_graphml(tmp_path / "g.graphml")).same_as(g)
+
+
 def test_graphml_keeps_inferred_moves_and_refuses_bad_ones(tmp_path):
     g = TransitionGraph()
     g.add_transition(0, 1, (0.5, 10.0), 2.0)

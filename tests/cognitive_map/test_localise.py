@@ -75,6 +75,19 @@ def test_bad_input_is_named():
         loc.observe(1, 1.0, corridor())
 
 
+@pytest.mark.parametrize("bad", [math.nan, math.inf, "5", True])
+def test_a_lift_or_anchor_time_that_is_no_finite_number_is_refused(bad):
+    """reset(nan) used to be taken, and check() then never gave up (nan - t0 >= max_time is
+    never true)."""
+    loc = MapLocaliser(LocaliserParams(max_time=30.0))
+    loc.reset(2.0)
+    with pytest.raises(ValueError, match=r"^t must be (a real number|finite), got "):
+        loc.reset(bad)
+    with pytest.raises(ValueError, match=r"^t must be (a real number|finite), got "):
+        loc.anchor(bad)
+    assert loc.t0 == 2.0 and loc.check(32.0)  # the last good lift still times out
+
+
 def test_the_weber_bound_itself_is_inside():
     # |ln(6 / 4)| = ln(1 + 0.5) exactly: a stay of 1.5 x the learned delay still matches
     g = corridor()

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from hippo.cognitive_map import DriveParams, Drives, Planner, TransitionGraph
@@ -44,6 +45,23 @@ def test_a_plan_stops_after_max_steps():
     full = Planner().plan(g, d, 0)
     assert full == [(i, i + 1) for i in range(8)]
     assert Planner().plan(g, d, 0, max_steps=3) == full[:3]
+    for bad, match in ((math.nan, "an integer, got nan"),
+                       ("3", "an integer, got '3'"),
+                       (2.7, "an integer, got 2.7"), (0, "an integer >= 1, got 0"),
+                       (True, r"an integer, got True \(a bool\)")):
+        with pytest.raises(ValueError, match=f"^max_steps must be {match}"):
+            Planner().plan(g, d, 0, max_steps=bad)
+
+
+@pytest.mark.parametrize(("seed", "match"), [
+    (1.5, r"^seed must be an integer, got 1.5"), (-1, r"^seed must be an integer in \[0, "),
+    (2**63, r"^seed must be an integer in \[0, "), ("1", r"^seed must be an integer, got '1'"),
+])
+def test_a_bad_planner_seed_is_named(seed, match):
+    with pytest.raises(ValueError, match=match):
+        Planner(seed=seed)
+    for good in (0, 2**63 - 1):  # a valid seed seeds the generator as before
+        assert Planner(seed=good).rng.random() == np.random.default_rng(good).random()
 
 
 def test_a_move_heading_is_kept_in_minus_pi_to_pi():

@@ -423,5 +423,29 @@ def test_non_finite_place_activities_are_refused_wherever_they_sit(bad: float):
         assert layer._place_ids.size == 5
     big = StateLayer()
     big.step(np.full(3, 0.5), dt=DT)
-    with np.errstate(all="ignore"):
-        big.step(np.full(3, 1e308), dt=DT)  # finite values whose sum overflows are no error
+    with np.errstate(all="ignore"), pytest.raises(ValueError, match="magnitude 1e"):
+        big.step(np.full(3, 1e308), dt=DT)  # finite values whose sum overflows: out of range
+
+
+@pytest.mark.parametrize("normalize", ["pooled", "unit", "fixed"])
+def test_one_huge_place_activity_is_refused_and_cannot_freeze_the_winner(normalize: str):
+    """Every place source gives activities far below PLACE_MAX in magnitude (cells in [0, 1],
+    unit-variance ICA units); one finite outlier of 1e6 used to ruin the pooled statistics so
+    that the winner never changed again. It is refused, the layer left as it was."""
+    layer = StateLayer(StateLayerParams(normalize=normalize), n_place=3)
+    for _ in range(20):
+        layer.step(np.array([1.0, 0.0, 0.0]), dt=DT)
+    pool = layer._pool
+    in_range = r"place activities must lie in \[-1000, 1000\]"
+    for bad in (1e6, -1e6, 1e200):
+        with np.errstate(over="ignore"), pytest.raises(ValueError, match=in_range):
+            layer.step(np.array([bad, 0.0, 0.0]), dt=DT)
+        with pytest.raises(ValueError, match="unit 3"):  # a growing vector, before it grows
+            layer.step(np.array([1.0, 0.0, 0.0, bad]), dt=DT)
+    assert layer._pool == pool and layer._place_ids.size == 3
+    for _ in range(50):
+        layer.step(np.array([0.0, 1.0, 0.0]), dt=DT)
+    assert layer.winner == layer.find("place", 1)
+    layer.step(np.array([999.0, 0.0, 0.0]), dt=DT)  # the bound itself is generous
+    many = StateLayer(n_place=400)  # sqrt(sum d^2) beyond the bound, each value within it
+    many.step(np.full(400, 500.0), dt=DT)

@@ -107,6 +107,20 @@ def test_odometry_integrates_true_motion_in_free_space():
     assert math.cos(pi.heading - h) == pytest.approx(1.0, abs=1e-9)
 
 
+def test_path_integration_refuses_a_bad_pose_or_odometry():
+    with pytest.raises(ValueError, match=r"pose contains 1 non-finite"):
+        PathIntegrator((math.nan, 0.0, 0.0))
+    with pytest.raises(ValueError, match=r"pose must be 3 numbers \(x, y, heading\), got shape"):
+        PathIntegrator((1.0, 2.0))
+    pi = PathIntegrator((1.0, 2.0, 0.5))
+    with pytest.raises(ValueError, match=r"odometry must be 3 numbers \(dx, dy, dtheta\), got "
+                                         r"shape \(2,\)"):
+        pi.step(np.array([1.0, 0.0]))
+    with pytest.raises(ValueError, match="odometry contains 1 non-finite"):
+        pi.step(np.array([1.0, np.inf, 0.0]))
+    assert pi.pose == (1.0, 2.0, 0.5)  # unchanged by the refused steps
+
+
 def test_differential_drive_kinematics():
     world = World(box(300, 300), seed=0)
     world.reset(0, pose=(150, 150, 0.0))

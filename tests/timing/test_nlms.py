@@ -75,3 +75,15 @@ def test_bad_input_is_named():
         NLMSParams(gamma=1.0)
     with pytest.raises(ValueError, match="alpha"):
         NLMSParams(alpha=-1.0)
+
+
+def test_unstable_step_and_wrong_params_are_refused():
+    layer = NLMS(1, 2)  # alpha = 10, gamma = 0.5: alpha*dt*eta reaches 2 at dt = 0.4
+    with pytest.raises(ValueError, match=r"alpha\*dt\*eta = 5 >= 2 is unstable"):
+        layer.step(np.ones(2), np.array([1.0]), 1.0)
+    assert not np.any(layer.weights) and not np.any(layer.m_us)  # nothing changed
+    for i in range(60):  # a stable dt learns the alternating target without diverging
+        layer.step(np.ones(2), np.array([float(i % 2)]), 0.2)
+    assert np.all(np.abs(layer.weights) < 1.0)
+    with pytest.raises(TypeError, match="params must be NLMSParams"):
+        NLMS(1, 2, params="abc")

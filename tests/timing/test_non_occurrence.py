@@ -109,3 +109,14 @@ def test_bad_input_names_the_argument_and_the_type():
         nonocc.step({}, 0.0)
     with pytest.raises(ValueError, match="got list"):
         nonocc.step([0.5], DT)
+
+
+@pytest.mark.parametrize("bad", ["0.5", b"0.5", True, np.bool_(False)])
+def test_a_prediction_that_is_no_number_is_refused(bad):
+    """float() would take a numeric string or a bool; a prediction is a number."""
+    nonocc = NonOccurrence()
+    with pytest.raises(ValueError, match=r"^prediction of \(0, 1\) must be a number, got "):
+        nonocc.step({(0, 1): bad}, DT)
+    assert nonocc.peak == {}
+    assert nonocc.step({(0, 1): np.float32(0.5), (1, 2): 1}, DT) == []  # numbers of any type
+    assert nonocc.peak == {(0, 1): 0.5, (1, 2): 1.0}

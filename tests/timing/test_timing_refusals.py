@@ -61,6 +61,16 @@ def test_unknown_states_and_wrong_types_are_refused_with_the_reason():
         TransitionParams(nlms="fast")
 
 
+def test_a_state_id_beyond_int64_is_refused_before_it_reaches_an_array():
+    chain = TimingChain()
+    with pytest.raises(ValueError, match=r"^winner must be a state id <= 2\*\*63 - 1"):
+        chain.step(2**70, DT)
+    chain.step(2**63 - 1, DT)  # the largest id works through the battery and the cells
+    chain.step(1, DT)
+    chain.step(2**63 - 1, DT)
+    assert chain.cells.successors(2**63 - 1) == [1]
+
+
 def test_a_trial_refuses_bad_arguments_with_the_reason():
     timing = SpectralTiming()
     chain = TimingChain.of(timing, TransitionCells(timing))
