@@ -175,17 +175,19 @@ class Drives:
         held = self._inhibited
         if inhibited:
             held = held | {self._check(n) for n in inhibited}
-        steps = [(name, p.epsilon * dt) for name, p in self._params.items() if name not in held]
-        for name, k in steps:
-            if k > 1.0:
+        params = self._params
+        for name, p in params.items():   # every step checked before any level changes
+            if p.epsilon * dt > 1.0 and name not in held:
                 raise ValueError(
-                    f"epsilon*dt = {k:g} > 1 for drive {name!r}: the Euler step would overshoot 1; "
-                    "use a smaller dt")
-        for name in held:
-            self._level[name] = 0.0
-        for name, k in steps:
-            d = self._level[name]
-            self._level[name] = d + k * (1.0 - d)
+                    f"epsilon*dt = {p.epsilon * dt:g} > 1 for drive {name!r}: the Euler step "
+                    "would overshoot 1; use a smaller dt")
+        level = self._level
+        for name, p in params.items():
+            if name in held:
+                level[name] = 0.0
+            else:
+                d = level[name]
+                level[name] = d + p.epsilon * dt * (1.0 - d)
 
     def satisfy(self, name: str) -> None:
         """The reward for ``name`` arrived: its level drops to 0 (then rises again)."""

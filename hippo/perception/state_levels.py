@@ -57,7 +57,10 @@ class StateLevels:
             a = check_finite("place activities", place)
             if a.ndim != 1:
                 raise ValueError(f"place activities must be a 1-D vector, got shape {a.shape}")
-            _refuse_outlier(a)
+            if p.normalize == "unit" or (p.normalize == "pooled"
+                                         and a.size != self._place_ids.size):
+                _refuse_outlier(a)   # the pooled branch below bounds the rest for less; raw
+                # ("fixed") activities keep no statistics an outlier could ruin
         if a.size < self._place_ids.size:
             raise ValueError(f"place activity vector shrank from {self._place_ids.size} to "
                              f"{a.size} units; place states are never removed")

@@ -427,7 +427,19 @@ def test_non_finite_place_activities_are_refused_wherever_they_sit(bad: float):
         big.step(np.full(3, 1e308), dt=DT)  # finite values whose sum overflows: out of range
 
 
-@pytest.mark.parametrize("normalize", ["pooled", "unit", "fixed"])
+def test_a_huge_raw_place_activity_does_no_lasting_harm():
+    """With raw activities (``fixed``) no statistics are kept: a spike of 1e6 saturates its
+    state for a tick, and the next place wins as soon as the spike is gone."""
+    layer = StateLayer(StateLayerParams(normalize="fixed"), n_place=3)
+    for _ in range(20):
+        layer.step(np.array([1.0, 0.0, 0.0]), dt=DT)
+    layer.step(np.array([1e6, 0.0, 0.0]), dt=DT)
+    for _ in range(50):
+        layer.step(np.array([0.0, 1.0, 0.0]), dt=DT)
+    assert layer.winner == layer.find("place", 1)
+
+
+@pytest.mark.parametrize("normalize", ["pooled", "unit"])
 def test_one_huge_place_activity_is_refused_and_cannot_freeze_the_winner(normalize: str):
     """Every place source gives activities far below PLACE_MAX in magnitude (cells in [0, 1],
     unit-variance ICA units); one finite outlier of 1e6 used to ruin the pooled statistics so
