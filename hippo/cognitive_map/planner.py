@@ -202,6 +202,7 @@ def propagate_reference(graph: TransitionGraph | nx.DiGraph, inputs: Any, w: flo
     input. Returns transition → activity.
     """
     w = _check_w(w)
+    inferred_weight = check_range("inferred_weight", inferred_weight, 0.0, 1.0, closed="right")
     if isinstance(graph, TransitionGraph):
         if isinstance(inputs, Drives):
             arr = drive_input(graph, inputs)

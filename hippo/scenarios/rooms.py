@@ -41,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo.cli_args import integer, numbers, probability, slow_pool
+from hippo.cli_args import Given, integer, numbers, probability, slow_pool
 from hippo.cli_args import sfa_cutoff as cli_sfa_cutoff
 from hippo.io import save_figure
 from hippo.perception import RCSFAICA, ICAConvergenceWarning
@@ -118,7 +118,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "for n rooms, unless --units K) per flat from the recording "
                              "alone, by a label-free criterion, instead of --leak; report it")
     parser.add_argument("--select-criterion", choices=CRITERIA, default=DEFAULT_CRITERION,
-                        help="label-free criterion of --select")
+                        action=Given, help="label-free criterion of --select")
     parser.add_argument("--figures", action=argparse.BooleanOptionalAction, default=True,
                         help="write PNGs")
 
@@ -134,6 +134,9 @@ def _units(text: str) -> int | str:
 def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
     """Checks across arguments, before any work."""
     check_leak_groups(args, parser)
+    if getattr(args, "select_criterion_given", False) and not args.select:
+        parser.error("argument --select-criterion: only with --select (the criterion it "
+                     "chooses by); add --select or leave it out")
     if args.select and args.units == "auto":
         parser.error("argument --units: 'auto' and --select each choose the unit count "
                      "without labels; leave one out")

@@ -147,7 +147,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(label-free criterion over the 16-pair grid) and report it "
                              "beside SMC09's")
     parser.add_argument("--select-criterion", choices=CRITERIA, default=DEFAULT_CRITERION,
-                        help="label-free criterion of --select")
+                        action=Given, help="label-free criterion of --select")
     parser.add_argument("--select-units", type=distinct_integers(1, 500), action=Given,
                         default=(ROOM_UNITS, SMC09_UNITS), metavar="K,K",
                         help="SFA/ICA unit counts --select chooses among (default: "
@@ -167,6 +167,9 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
     if getattr(args, "select_units_given", False) and not args.select:
         parser.error("argument --select-units: only with --select (the unit counts it chooses "
                      "among); add --select or leave it out")
+    if getattr(args, "select_criterion_given", False) and not args.select:
+        parser.error("argument --select-criterion: only with --select (the criterion it "
+                     "chooses by); add --select or leave it out")
     if args.select and max(args.select_units) > args.neurons + 8:
         parser.error(f"argument --select-units: {max(args.select_units)} exceeds the "
                      f"{args.neurons + 8} inputs of SFA (--neurons + 8 sensors)")

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite, check_int, check_real
+from hippo._checks import check_finite, check_int, check_real, check_seed
 
 #: the ways a sensor can be dead
 FAULT_MODES = ("stuck0", "stuck1", "noise")
@@ -104,7 +104,7 @@ class SensorFaults:
         bad = [i for i in self.indices if i >= U.shape[1]]
         if bad:
             raise ValueError(f"dead sensor(s) {bad} out of range for {U.shape[1]} sensors")
-        rng = np.random.default_rng(seed)
+        rng = _rng(seed)
         out = U.copy()
         s = min(int(self.start), U.shape[0])
         part = out[s:]
@@ -121,6 +121,13 @@ class SensorFaults:
         return out
 
 
+def _rng(seed: int | np.random.Generator) -> np.random.Generator:
+    """The generator of a fault's noise: ``seed`` itself, or one made from an integer seed."""
+    if isinstance(seed, np.random.Generator):
+        return seed
+    return np.random.default_rng(check_seed("seed", seed))
+
+
 class FaultInjector:
     """Apply :class:`SensorFaults` online, one reading per call (tick counted from 0)."""
 
@@ -129,7 +136,7 @@ class FaultInjector:
             raise TypeError(f"faults must be SensorFaults (e.g. SensorFaults.of({{1: "
                             f"'stuck0'}})), got {type(faults).__name__}")
         self.faults = faults
-        self.rng = np.random.default_rng(seed)
+        self.rng = _rng(seed)
         self.tick = 0
 
     def __call__(self, u: np.ndarray) -> np.ndarray:

@@ -211,7 +211,9 @@ class SpectralTiming:
                             previous_activity)
 
     def battery(self, state: int) -> np.ndarray:
-        """The battery of ``state``: its activity if it is the winner, else zeros."""
+        """The battery of ``state``: its activity if it is the winner, else zeros (any id >= 0:
+        every state's battery is silent until it wins; which ids exist is the transition
+        cells' record, not this one's)."""
         state = check_state_id("state", state)
         if state == self.state:
             return self.activity.copy()

@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_positive, check_range
+from hippo._checks import check_positive, check_range, check_seed
 from hippo.timing.chain import TimingChain
 from hippo.timing.non_occurrence import NonOccurrence
 from hippo.timing.spectral import SpectralTiming
@@ -158,7 +158,7 @@ def reproduce(delay: float, *, seed: int = 0, teacher: int = 3, loops: int = 5,
     Each closed-loop wait ends one tick after ``delay_over`` rises, and is learned again (the
     patrol's loop). A fresh learner per call; ``seed`` fixes the tick jitter.
     """
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(check_seed("seed", seed))
     chain = TimingChain()
     kw = {"dt": dt, "jitter": jitter, "rng": rng, "other": 2}
     for _ in range(teacher):

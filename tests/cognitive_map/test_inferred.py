@@ -125,3 +125,13 @@ def test_the_planner_chooses_the_inferred_way_back_and_replans_when_it_is_confir
     assert planner.decide(g, drives, 2).activity == pytest.approx(0.9 * goal)
     with pytest.raises(ValueError, match="inferred_weight"):
         PlannerParams(inferred_weight=0.0)
+
+
+@pytest.mark.parametrize("f", [5.0, -1.0, 0.0, np.nan])
+def test_the_reference_sweep_checks_inferred_weight_as_the_planner_does(f):
+    # fifth fuzzing pass: propagate_reference took 5 and -1 (propagate refused them)
+    g = _ring_with_a_stop()
+    for sweep in (propagate, propagate_reference):
+        with pytest.raises(ValueError, match=r"^inferred_weight must lie in \(0.0, 1.0\]"):
+            sweep(g, {(1, 99): 1.0}, 0.9, inferred_weight=f)
+    assert propagate_reference(g, {(1, 99): 1.0}, 0.9, inferred_weight=1.0)[(2, 1)] == 0.9

@@ -97,3 +97,21 @@ def test_fault_specs_are_checked_not_coerced():
     F = SensorFaults.of([np.int64(3), [1, "noise"]], sensor_noise=np.float64(0.1), start=np.int8(2))
     assert F.dead == ((1, "noise"), (3, "stuck0")) and type(F.dead[1][0]) is int
     assert F.sensor_noise == 0.1 and F.start == 2
+
+
+@pytest.mark.parametrize(("seed", "match"), [
+    (-1, r"^seed must be an integer in \[0, "), (1.5, r"^seed must be an integer, got 1.5"),
+])
+def test_a_bad_fault_seed_is_named(seed, match):
+    # fifth fuzzing pass: numpy's SeedSequence message, naming no argument
+    F, U = SensorFaults.of({1: "noise"}, sensor_noise=0.1), np.full((20, 3), 0.5)
+    with pytest.raises(ValueError, match=match):
+        F.apply(U, seed=seed)
+    with pytest.raises(ValueError, match=match):
+        FaultInjector(F, seed=seed)
+    # an integer seed and a generator seed the noise as before
+    assert np.array_equal(F.apply(U, seed=7), F.apply(U, np.random.default_rng(7)))
+    rng = np.random.default_rng(7)
+    want = np.clip(U + rng.normal(0.0, 0.1, U.shape), 0.0, 1.0)
+    want[:, 1] = rng.uniform(0.0, 1.0, 20)
+    assert np.array_equal(F.apply(U, seed=7), want)

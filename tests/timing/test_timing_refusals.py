@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from hippo.timing import NLMSParams, SpectralTiming, TimingChain, TransitionCells, TransitionParams
-from hippo.timing.trials import run_trial
+from hippo.timing.trials import reproduce, run_trial
 
 DT = 0.2
 
@@ -93,3 +93,14 @@ def test_a_trial_refuses_bad_arguments_with_the_reason():
         run_trial(chain, 1, 0, 2.0, rng=rng)
     assert str(err.value) == ("state 1 is already the winner: a trial starts by entering it "
                               "(end the previous trial in another state, e.g. with other=...)")
+
+
+@pytest.mark.parametrize(("seed", "match"), [
+    (-1, r"^seed must be an integer in \[0, "), (1.5, r"^seed must be an integer, got 1.5"),
+])
+def test_reproduce_names_a_bad_seed(seed, match):
+    # fifth fuzzing pass: numpy's SeedSequence message, naming no argument
+    with pytest.raises(ValueError, match=match):
+        reproduce(2.0, seed=seed, teacher=1, loops=1)
+    a, b = reproduce(2.0, seed=4, teacher=1, loops=1), reproduce(2.0, seed=4, teacher=1, loops=1)
+    assert a.waits == b.waits and a.learned == b.learned
