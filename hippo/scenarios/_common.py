@@ -190,6 +190,15 @@ def cached_recording(cache: str | Path | None, key: str, build: Callable[[], Rec
     return rec
 
 
+def only_with(args: argparse.Namespace, parser: argparse.ArgumentParser, dest: str,
+              needs: str, why: str) -> None:
+    """Refuse the option ``dest`` (a :class:`~hippo.cli_args.Given` one) typed without the
+    flag ``needs``, which it only serves (``why``): ignored, it would do nothing in silence."""
+    if getattr(args, f"{dest}_given", False) and not getattr(args, needs):
+        parser.error(f"argument --{dest.replace('_', '-')}: only with --{needs} ({why}); "
+                     f"add --{needs} or leave it out")
+
+
 #: one or more leak rates in (0, 1], read as every comma-separated option is
 _LEAK_RATES = numbers((1, None), 0.0, 1.0, lo_open=True)
 

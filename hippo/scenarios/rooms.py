@@ -55,6 +55,7 @@ from hippo.scenarios._common import (
     check_leak_groups,
     check_sfa_inputs,
     mean_sd,
+    only_with,
     prepare_out,
     seed_list,
     sfa_cutoff,
@@ -134,9 +135,7 @@ def _units(text: str) -> int | str:
 def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
     """Checks across arguments, before any work."""
     check_leak_groups(args, parser)
-    if getattr(args, "select_criterion_given", False) and not args.select:
-        parser.error("argument --select-criterion: only with --select (the criterion it "
-                     "chooses by); add --select or leave it out")
+    only_with(args, parser, "select_criterion", "select", "the criterion it chooses by")
     if args.select and args.units == "auto":
         parser.error("argument --units: 'auto' and --select each choose the unit count "
                      "without labels; leave one out")

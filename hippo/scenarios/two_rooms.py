@@ -61,6 +61,7 @@ from hippo.scenarios._common import (
     add_seeds_argument,
     check_leak_groups,
     mean_sd,
+    only_with,
     parse_leak,
     prepare_out,
     seed_list,
@@ -164,12 +165,8 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
     if args.n_ica > args.n_sfa:
         parser.error(f"argument --n-ica: {args.n_ica} exceeds --n-sfa {args.n_sfa} "
                      "(ICA rotates the SFA outputs)")
-    if getattr(args, "select_units_given", False) and not args.select:
-        parser.error("argument --select-units: only with --select (the unit counts it chooses "
-                     "among); add --select or leave it out")
-    if getattr(args, "select_criterion_given", False) and not args.select:
-        parser.error("argument --select-criterion: only with --select (the criterion it "
-                     "chooses by); add --select or leave it out")
+    only_with(args, parser, "select_units", "select", "the unit counts it chooses among")
+    only_with(args, parser, "select_criterion", "select", "the criterion it chooses by")
     if args.select and max(args.select_units) > args.neurons + 8:
         parser.error(f"argument --select-units: {max(args.select_units)} exceeds the "
                      f"{args.neurons + 8} inputs of SFA (--neurons + 8 sensors)")
