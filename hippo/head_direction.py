@@ -72,18 +72,21 @@ class HeadingSectors:
     def nearest(self, heading: float) -> int:
         """The sector whose centre is nearest ``heading`` (sector ``b`` is centred on
         ``b · 2π / n``)."""
-        return math.floor(_finite("heading", heading, "rad") / self.width + 0.5) % self.n
+        return self._nearest(_finite("heading", heading, "rad"))
+
+    def _nearest(self, heading: float) -> int:
+        return math.floor(heading / self.width + 0.5) % self.n
 
     def update(self, heading: float, step: float) -> int:
         """The sector after a tick that ran ``step`` cm with heading ``heading`` (rad)."""
-        _finite("heading", heading, "rad")
+        _finite("heading", heading, "rad")   # checked once a tick, here
         _finite("step", step, "cm", lo=0.0)
         if self.sector is None:
-            self.sector = self.nearest(heading)
+            self.sector = self._nearest(heading)
         elif step >= self.min_step:
             off = math.remainder(heading - self.sector * self.width, 2.0 * math.pi)
             if abs(off) > self.width / 2 + self.margin:
-                self.sector = self.nearest(heading)
+                self.sector = self._nearest(heading)
         return self.sector
 
     def split(self, acts: np.ndarray, heading: float, step: float) -> np.ndarray:
