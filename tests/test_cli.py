@@ -146,6 +146,11 @@ MISTAKES: list[tuple[list[str], str]] = [
     (["run", "rooms", "--units", "abc"], "'auto'"),
     (["run", "two-rooms", "--select-criterion", "stability"], "--select-criterion: only"),
     (["run", "rooms", "--select-criterion", "stability"], "--select-criterion: only"),
+    # sixth pass: two checkpoints on one spot were "waypoints must not all be one point"
+    (["run", "patrol", "--checkpoints", "80,11;80,11"],
+     "--checkpoints: checkpoints 1 and 2 are the same point (80, 11)"),
+    (["run", "deployment", "--checkpoints", "80,11;140,56;80,11"],
+     "--checkpoints: checkpoints 1 and 3 are the same point (80, 11)"),
 ]
 
 

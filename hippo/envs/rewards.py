@@ -152,7 +152,11 @@ class PatrolTask(Task):
     """
 
     def __init__(self, waits: Sequence[float] = (24.1, 19.1, 11.6), radius: float = 12.0) -> None:
-        waits = tuple(float(w) for w in waits)
+        try:
+            waits = tuple(float(w) for w in waits)
+        except (TypeError, ValueError):   # 5, "abc", (None, 2, 3): no three waits
+            raise ValueError(f"waits must be three waits in s, one per checkpoint, got "
+                             f"{waits!r:.80}") from None
         if len(waits) != 3:
             raise ValueError(f"waits must give one wait per checkpoint (3), got {waits}")
         for w in waits:

@@ -107,10 +107,13 @@ class RobotEnv(gym.Env):
         ``(observation, reward, terminated, truncated, info)``."""
         if self._last is None:
             raise RuntimeError("call reset() before step()")
-        a = np.asarray(action, dtype=float).reshape(-1)
+        try:
+            a = np.asarray(action, dtype=float).reshape(-1)
+        except (TypeError, ValueError):   # a string, a dict, complex numbers: no wheel speeds
+            a = np.full(0, np.nan)
         if a.shape != (2,) or not np.all(np.isfinite(a)):
             raise ValueError(f"action must be two finite wheel speeds (in [-1, 1]; beyond it "
-                             f"they are clipped), got {action!r}")
+                             f"they are clipped), got {action!r:.80}")
         wheels = np.clip(a, -1.0, 1.0) * self.world.robot.speed_max
         obs = self.world.step(wheels)
         self._last = obs

@@ -44,6 +44,7 @@ class ArenaBuilder:
         self._locations: list[Point] = []
         self._landmarks: dict[str, Point] = {}
         self._start: tuple[float, float, float] | None = None
+        self._boxes: list[tuple[float, float, float, float]] = []
 
     def wall(self, a: Sequence[float], b: Sequence[float]) -> ArenaBuilder:
         """A straight wall segment from ``a`` to ``b``, inside the arena (edges included)."""
@@ -68,7 +69,9 @@ class ArenaBuilder:
     def box(self, rect: Rect) -> ArenaBuilder:
         """A closed rectangular block (pillar) ``(xmin, ymin, xmax, ymax)``."""
         x0, y0, x1, y1 = rect
-        return self.polyline([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], closed=True)
+        self.polyline([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], closed=True)
+        self._boxes.append((float(x0), float(y0), float(x1), float(y1)))
+        return self
 
     def outer_walls(self) -> ArenaBuilder:
         """The four walls of the bounding rectangle."""
@@ -163,4 +166,19 @@ class ArenaBuilder:
         )
         if not arena.is_free(arena.start_pose[0], arena.start_pose[1], 3.7):
             raise ValueError(f"start pose {arena.start_pose} of {self.name!r} is not free")
+        self._check_start_outside_boxes(arena.start_pose[0], arena.start_pose[1])
         return arena
+
+    def _check_start_outside_boxes(self, x: float, y: float) -> None:
+        """A start inside a box (a pillar) with walls outside it closes the robot in the pillar:
+        a ring built round a central box without :meth:`start` started at the arena's centre,
+        and a patrol's checkpoints were drawn inside the pillar. A box round every wall (used
+        as the outer walls) may hold the start."""
+        for x0, y0, x1, y1 in self._boxes:
+            if not (x0 < x - 3.7 and x + 3.7 < x1 and y0 < y - 3.7 and y + 3.7 < y1):
+                continue
+            if any(not (x0 <= px <= x1 and y0 <= py <= y1) for w in self._walls for px, py in w):
+                given = "" if self._start is not None else " (the default start, the centre)"
+                raise ValueError(f"start ({x:g}, {y:g}){given} of {self.name!r} lies inside "
+                                 f"box {(x0, y0, x1, y1)}, a pillar the robot cannot leave; "
+                                 "put it on the floor with ArenaBuilder.start(x, y)")

@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_positive
+from hippo._checks import check_positive, check_real
 from hippo.tasks.passes import stops
 from hippo.tasks.patrol import PASS_RADIUS, pass_report
 from hippo.tasks.routes import Route
@@ -60,7 +60,8 @@ class StuckWatch:
     the spot and pushing at a wall all leave it flat."""
 
     def __init__(self, stuck_s: float, stuck_cm: float) -> None:
-        self.stuck_s, self.stuck_cm = float(stuck_s), float(stuck_cm)
+        self.stuck_s = check_positive("stuck_s", stuck_s)
+        self.stuck_cm = check_positive("stuck_cm", stuck_cm)
         self.reset(math.nan, -math.inf)
 
     def reset(self, t: float, travelled: float) -> None:
@@ -69,6 +70,7 @@ class StuckWatch:
 
     def update(self, t: float, travelled: float) -> bool:
         """True once the robot is stuck (then :meth:`reset` it after helping it on)."""
+        t, travelled = check_real("t", t), check_real("travelled", travelled)
         if math.isnan(self._since) or travelled >= self._best + self.stuck_cm:
             self._best, self._since = travelled, t
             return False
@@ -82,6 +84,7 @@ def tally_failures(arrays: dict, route: Route, checkpoints: Sequence[Sequence[fl
     module docstring; ``threshold``: the speed below which the robot is still). Returns
     ``tasks``, ``missed``, ``misplaced``, ``wait_off``, ``extra_stops``, ``stops``, the
     reproduced waits per checkpoint and their relative errors."""
+    check_positive("tolerance", tolerance)
     near = stops(arrays, checkpoints, threshold)
     everywhere = stops(arrays, checkpoints, threshold, radius=math.inf)
     rows = pass_report(arrays, route, checkpoints, near, learned, phase=phase)

@@ -16,6 +16,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from hippo._checks import check_finite, check_positive
 from hippo.tasks.routes import LapCounter, Route
 from hippo.types import Mode, wrap_angle
 
@@ -43,10 +44,13 @@ def passes(arrays: dict, centre: Sequence[float], *, phase: int, radius: float =
     """Index ranges ``[a, b)`` of the passes by ``centre`` (within ``radius`` cm) during
     ``phase``; runs at most ``gap`` ticks apart are one pass, and a pass under way when the
     phase starts (the robot is still where the previous phase left it) does not count."""
+    cx, cy = _point("centre", centre)
+    check_positive("radius", radius)
+    check_positive("gap", gap, allow_zero=True)
     idx = np.flatnonzero(arrays["phase"] == int(phase))
     if idx.size == 0:
         return []
-    near = np.hypot(arrays["x"][idx] - centre[0], arrays["y"][idx] - centre[1]) < radius
+    near = np.hypot(arrays["x"][idx] - cx, arrays["y"][idx] - cy) < radius
     runs: list[list[int]] = []
     for i in idx[near]:
         if runs and i - runs[-1][1] <= gap:
@@ -60,6 +64,8 @@ def progress_along(route: Route, x: np.ndarray, y: np.ndarray, window: float = 3
                    ) -> np.ndarray:
     """Unwrapped progress (cm) along closed ``route`` of the positions ``(x[i], y[i])``, tracked
     from the first (its progress on the route) as :class:`LapCounter` does."""
+    if len(x) != len(y):
+        raise ValueError(f"x and y must be as long, got {len(x)} and {len(y)} positions")
     laps = LapCounter(route, window)
     out = np.empty(len(x))
     for i, (a, b) in enumerate(zip(x, y, strict=True)):
@@ -74,12 +80,16 @@ def route_passes(arrays: dict, route: Route, checkpoint: Sequence[float], *, pha
     along ``route``: each time the robot's progress comes within ``radius`` cm (along the
     route) of the checkpoint's, one pass per lap, however the robot dawdles or wiggles there.
     A pass under way when the phase starts, or not finished when it ends, does not count."""
+    check_positive("radius", radius)
+    if not route.closed:
+        raise ValueError("route passes need a closed route (one pass per lap)")
+    cx, cy = _point("checkpoint", checkpoint)
     idx = np.flatnonzero(arrays["phase"] == int(phase))
     if idx.size == 0:
         return []
     p = progress_along(route, arrays["x"][idx], arrays["y"][idx])
     L = route.length
-    s_k = route.progress(*checkpoint[:2])
+    s_k = route.progress(cx, cy)
     out = []
     n0 = math.floor((p.min() - s_k - radius) / L)
     n1 = math.ceil((p.max() - s_k + radius) / L)
@@ -102,6 +112,14 @@ def stops(arrays: dict, checkpoints: Sequence[Sequence[float]], threshold: float
     at walls. Each stop: ``i0`` (first tick), ``duration``, ``checkpoint``, ``phase``,
     ``trial``, ``drive`` (the drive it waited for most, -1: none).
     """
+    cps = check_finite("checkpoints", checkpoints)
+    if cps.ndim != 2 or cps.shape[1] != 2 or len(cps) == 0:
+        raise ValueError(f"checkpoints must be one or more points (x, y), got shape {cps.shape}")
+    check_positive("threshold", threshold, allow_zero=True)
+    check_positive("min_s", min_s, allow_zero=True)
+    if not float(radius) > 0:   # math.inf: stops anywhere, each at its nearest checkpoint
+        raise ValueError(f"radius must be > 0 cm (inf: anywhere), got {radius!r}")
+    n_cp = len(cps)
     still = arrays["speed"] <= threshold
     waiting = arrays["mode"] == int(Mode.WAIT)
     # a stop's length is its ticks x the tick (rounded to 1 ns): the same for the same ticks
@@ -125,6 +143,9 @@ def stops(arrays: dict, checkpoints: Sequence[Sequence[float]], threshold: float
         taught = taught_phase is not None and phase == int(taught_phase)
         if taught:
             k = int(arrays["trial"][i])
+            if not 0 <= k < n_cp:
+                raise ValueError(f"the stop at tick {i} (taught_phase {phase}) is in trial {k}, "
+                                 f"which names no checkpoint (there are {n_cp})")
         chosen = taught or bool(np.any(waiting[i:j]))
         if dur >= min_s and d[k] < radius and chosen:
             drives = arrays["wait_drive"][i:j]
@@ -134,3 +155,11 @@ def stops(arrays: dict, checkpoints: Sequence[Sequence[float]], threshold: float
                         "trial": int(arrays["trial"][i]), "drive": drive})
         i = j
     return out
+
+
+def _point(name: str, point: Sequence[float]) -> tuple[float, float]:
+    """``point``'s ``(x, y)`` as finite floats (a longer sequence: its first two items)."""
+    xy = check_finite(name, point)
+    if xy.ndim != 1 or len(xy) < 2:
+        raise ValueError(f"{name} must be a point (x, y), got {point!r}")
+    return float(xy[0]), float(xy[1])

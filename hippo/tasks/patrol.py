@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_int
+from hippo._checks import check_finite, check_int
 from hippo.progress import Progress
 from hippo.tasks.patrol_report import PASS_RADIUS, pass_report, patrol_rounds
 from hippo.tasks.patrol_sets import (
@@ -83,7 +83,14 @@ class PatrolCourse:
                  names: Sequence[str], *, tour: bool = False) -> None:
         self.s, self.agent, self.dt = s, s.agent, s.world.dt
         self.route = route
-        self.checkpoints = [tuple(map(float, c)) for c in checkpoints]
+        cps = check_finite("checkpoints", checkpoints)
+        if cps.ndim != 2 or cps.shape[1] != 2 or len(cps) == 0:
+            raise ValueError(f"checkpoints must be one or more points (x, y), got shape "
+                             f"{cps.shape}")
+        if isinstance(names, str) or len(names) != len(cps) or len(set(names)) != len(names):
+            raise ValueError(f"names must be one distinct drive name per checkpoint "
+                             f"({len(cps)}), got {names!r}")
+        self.checkpoints = [(float(x), float(y)) for x, y in cps]
         self.names = list(names)
         self.loop = LapCounter(route)
         L = route.length

@@ -11,8 +11,13 @@
 
 from __future__ import annotations
 
+import math
+import numbers
 from collections.abc import Sequence
 
+import numpy as np
+
+from hippo._checks import check_int
 from hippo.tasks.passes import route_passes
 from hippo.tasks.routes import Route
 
@@ -29,8 +34,12 @@ def pass_report(arrays: dict, route: Route, checkpoints: Sequence[Sequence[float
     arrays, if given), the first stop the robot chose for drive ``k`` in each pass
     (``reproduced_waits_s``), further stops there for it (``extra_stops``), stops there for
     another drive (``misplaced_stops``), and the waits' relative differences from
-    ``learned[k]`` (``rel_errors``)."""
+    ``learned[k]`` (``rel_errors``; none where ``learned[k]`` is None or 0: not learned)."""
+    _check_learned(learned, len(checkpoints))
     lo, hi = span if span is not None else (0, len(arrays["t"]))
+    lo, hi = check_int("span start", lo, lo=0), check_int("span end", hi, lo=0)
+    if hi < lo:
+        raise ValueError(f"span must be [i0, i1) with i0 <= i1, got ({lo}, {hi})")
     rows = []
     for k, cp in enumerate(checkpoints):
         runs = [(a, b) for a, b in route_passes(arrays, route, cp, phase=phase,
@@ -49,6 +58,20 @@ def pass_report(arrays: dict, route: Route, checkpoints: Sequence[Sequence[float
     return rows
 
 
+def _check_learned(learned: Sequence[float | None], n: int) -> None:
+    """One learned wait per checkpoint, each None (not learned) or a finite number >= 0 s: a
+    NaN gave NaN relative errors, which no tolerance counts as off (``tally_failures``)."""
+    if len(learned) != n:
+        raise ValueError(f"learned must give one wait per checkpoint ({n}), got {len(learned)}")
+    for k, w in enumerate(learned):
+        if w is None:
+            continue
+        if isinstance(w, bool | np.bool_) or not isinstance(w, numbers.Real) or \
+                not (math.isfinite(float(w)) and float(w) >= 0.0):
+            raise ValueError(f"learned[{k}] must be a finite wait >= 0 s or None (not learned), "
+                             f"got {w!r}")
+
+
 def patrol_rounds(stop_list: Sequence[dict], n: int, *, phase: int) -> tuple[int, int, int]:
     """The patrol measured without a route: the stops made during ``phase`` (from
     :func:`hippo.tasks.stops`) in the order made; a stop *serves* its checkpoint when the
@@ -58,6 +81,7 @@ def patrol_rounds(stop_list: Sequence[dict], n: int, *, phase: int) -> tuple[int
     between checkpoints: a robot that serves them in another order than the route's, or
     shuttles along a corridor the route runs both ways, still patrols (progress along such a
     route cannot tell out from back)."""
+    n = check_int("n", n, lo=1)
     here = sorted((st for st in stop_list if st["phase"] == phase), key=lambda st: st["i0"])
     rounds, serving, last, seen = 0, 0, None, set()
     for st in here:

@@ -14,12 +14,13 @@ Each takes the arena as a built-in arena's name (``"goal-arena"``) or as an
 from __future__ import annotations
 
 from collections.abc import Sequence
+from numbers import Real
 from typing import Any
 
 import numpy as np
 from scipy import ndimage
 
-from hippo._checks import check_seed
+from hippo._checks import check_finite, check_int, check_seed
 from hippo.sim import arenas
 from hippo.sim.arena import Arena, _segment_clear
 from hippo.tasks.explore import arena_tour
@@ -160,6 +161,7 @@ def checked_route(arena_spec: str | Arena, checkpoints: Sequence[Sequence[float]
     route)`` (the route is built once for both)."""
     arena = _arena(arena_spec)
     arena_name = arena.name
+    checkpoints, waits = _course(checkpoints, waits)
     if not 2 <= len(checkpoints) <= 4:
         raise ValueError(f"a patrol has 2 to 4 checkpoints, got {len(checkpoints)}")
     if len(waits) != len(checkpoints):
@@ -192,6 +194,30 @@ def checked_route(arena_spec: str | Arena, checkpoints: Sequence[Sequence[float]
     return route_kind, route
 
 
+def _course(checkpoints: Any, waits: Any) -> tuple[list[tuple[float, float]], list[float]]:
+    """The checkpoints as ``(x, y)`` floats and the waits as floats, or a ``ValueError`` naming
+    what is wrong: points that are not ``(x, y)`` (``(x, y, heading)`` failed in an unpacking),
+    NaN or inf in them, two checkpoints on one spot (a route of no length), a wait that is no
+    number (``None``, ``"9"``), waits that are not a list."""
+    cps = check_finite("checkpoints", checkpoints)
+    if cps.ndim != 2 or cps.shape[1] != 2:
+        raise ValueError(f"checkpoints must be a list of points (x, y) in cm, got shape "
+                         f"{cps.shape}")
+    pts = [(float(x), float(y)) for x, y in cps]
+    for b, q in enumerate(pts):
+        a = pts.index(q)
+        if a != b:
+            raise ValueError(f"checkpoints {a + 1} and {b + 1} are the same point "
+                             f"({q[0]:g}, {q[1]:g}); each checkpoint must have a spot of its own")
+    if isinstance(waits, str) or not hasattr(waits, "__len__") or np.ndim(waits) != 1:
+        raise ValueError(f"waits must be a list of waits in s (one per checkpoint), got "
+                         f"{waits!r:.80}")
+    bad = [w for w in waits if isinstance(w, bool | np.bool_) or not isinstance(w, Real)]
+    if bad:
+        raise ValueError(f"waits must be numbers of seconds, got {bad[0]!r}")
+    return pts, [float(w) for w in waits]
+
+
 def random_patrol(arena_spec: str | Arena, n: int, seed: int, *,
                   waits: tuple[float, float] = (8.0, 30.0),
                   clearance: float = 10.0, tries: int = 2000
@@ -203,10 +229,13 @@ def random_patrol(arena_spec: str | Arena, n: int, seed: int, *,
     patrol in any arena."""
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 2 <= n <= 4:
         raise ValueError(f"n must be 2 to 4 checkpoints, got {n!r}")
+    if np.ndim(waits) != 1 or len(waits) != 2:
+        raise ValueError(f"waits must be (low, high) in s, got {waits!r:.80}")
     lo, hi = (float(v) for v in waits)
     if not MIN_WAIT_S <= lo <= hi <= MAX_WAIT_S:
         raise ValueError(f"waits must be (low, high) with {MIN_WAIT_S:g} <= low <= high <= "
                          f"{MAX_WAIT_S:g} s, got {tuple(waits)!r}")
+    tries = check_int("tries", tries, lo=1)
     if not 0.0 <= float(clearance) < 1e6:
         raise ValueError(f"clearance must be a finite number of cm >= 0, got {clearance!r}")
     arena = _arena(arena_spec)

@@ -30,20 +30,26 @@ from scipy.spatial import cKDTree
 
 from hippo._checks import check_finite, check_positive, check_real
 
-__all__ = ["LapCounter", "Route", "lead_from"]
+__all__ = ["MAX_SAMPLES", "LapCounter", "Route", "lead_from"]
+
+#: the most points :meth:`Route.sample` returns (a spacing of 1e-6 cm asked for 400 million
+#: points on a 4-m loop, built one by one in Python: a hang)
+MAX_SAMPLES = 1_000_000
 
 
 class Route:
     """Waypoints ``[(x, y), ...]`` in cm; ``closed``: the last one leads back to the first."""
 
     def __init__(self, waypoints: Sequence[Sequence[float]], *, closed: bool = True) -> None:
+        if not isinstance(closed, bool | np.bool_):
+            raise TypeError(f"closed must be True or False, got {closed!r}")
         pts = check_finite("waypoints", waypoints)
         if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2:
             raise ValueError(f"waypoints must be at least two (x, y) points, got {pts.shape}")
         if closed and np.allclose(pts[0], pts[-1]):
             pts = pts[:-1]  # the loop's closing point is implied
         self.points = pts
-        self.closed = closed
+        self.closed = bool(closed)
         ends = np.vstack([pts[1:], pts[:1]]) if closed else pts[1:]
         self._a, self._d = pts[: len(ends)], ends - pts[: len(ends)]
         seg = np.hypot(self._d[:, 0], self._d[:, 1])
@@ -76,9 +82,18 @@ class Route:
         than the one it is passed on (patrol-course, checkpoints drawn by
         :func:`hippo.tasks.random_patrol`: three of them all in its north-east corner made a
         route out and back along one corridor; with this, a loop round the ring)."""
-        pts = [tuple(map(float, p)) for p in points]
-        if len(pts) < 2:
-            raise ValueError(f"a route needs at least two points, got {len(pts)}")
+        arr = check_finite("points", points)
+        if arr.ndim != 2 or arr.shape[1] != 2 or len(arr) < 2:
+            n = len(arr) if arr.ndim == 2 and arr.shape[1] == 2 else arr.shape
+            raise ValueError(f"a route needs at least two points (x, y), got {n}")
+        if np.all(arr == arr[0]):
+            raise ValueError(f"points must not all be one point: got {len(arr)} copies of "
+                             f"({arr[0, 0]:g}, {arr[0, 1]:g})")
+        check_positive("radius", radius)
+        check_positive("clearance", clearance, allow_zero=True)
+        check_positive("keep_off", keep_off, allow_zero=True)
+        check_positive("detour", detour)
+        pts = [(float(x), float(y)) for x, y in arr]
         wps: list[tuple[float, float]] = []
         for a, b in pairwise([*pts, pts[0]]):
             length, path = arena.shortest_path(a, b, radius, clearance=clearance, graded=True)
@@ -129,6 +144,7 @@ class Route:
         of that part lies within ``window`` cm of ``(x, y)`` (the robot was carried, or not tracked
         for a while), the whole route is searched."""
         x, y, near = check_real("x", x), check_real("y", y), check_real("near", near)
+        window = check_positive("window", window)
         dense = self._dense()
         gap = (dense[:, 0] - near + self.length / 2) % self.length - self.length / 2 \
             if self.closed else dense[:, 0] - near
@@ -171,8 +187,11 @@ class Route:
     def sample(self, spacing: float) -> list[tuple[float, float]]:
         """Points every ``spacing`` cm along the route from its first waypoint (e.g. the
         labelled locations of an arena built around it)."""
-        if not spacing > 0:
-            raise ValueError(f"spacing must be > 0 cm, got {spacing!r}")
+        spacing = check_positive("spacing", spacing)
+        if self.length / spacing > MAX_SAMPLES:
+            raise ValueError(f"spacing {spacing:g} cm gives {self.length / spacing:.3g} points "
+                             f"along this {self.length:.0f}-cm route; at most {MAX_SAMPLES:,} "
+                             f"(a spacing of at least {self.length / MAX_SAMPLES:.2g} cm)")
         out = []
         for s in np.arange(0.0, self.length - 1e-9, spacing):
             k = int(np.searchsorted(self._s0, s, side="right") - 1)
@@ -183,16 +202,17 @@ class Route:
 
     def nearest(self, x: float, y: float) -> int:
         """Index of the waypoint nearest to ``(x, y)``."""
+        x, y = check_real("x", x), check_real("y", y)
         return int(np.argmin(np.hypot(self.points[:, 0] - x, self.points[:, 1] - y)))
 
     def leg(self, start: Sequence[float], goal: Sequence[float]) -> list[tuple[float, float]]:
         """Waypoints from ``start`` to ``goal`` along the route's direction (the waypoint after
         the one nearest ``start``, up to the one nearest ``goal``), then ``goal`` itself."""
         wp = self.waypoints
-        i, j = self.nearest(*start[:2]), self.nearest(*goal[:2])
+        (x0, y0), (x1, y1) = (_xy(name, p) for name, p in (("start", start), ("goal", goal)))
+        i, j = self.nearest(x0, y0), self.nearest(x1, y1)
         n = len(wp)
-        return [wp[(i + k) % n] for k in range(1, (j - i) % n + 1)] + [
-            (float(goal[0]), float(goal[1]))]
+        return [wp[(i + k) % n] for k in range(1, (j - i) % n + 1)] + [(x1, y1)]
 
     @property
     def signed_area(self) -> float:
@@ -243,11 +263,21 @@ class Route:
         """One whole loop from the waypoint nearest ``pose`` (or the next one, if that one is
         behind the robot's heading) back to it."""
         wp = self.waypoints
+        if len(pose) != 3:
+            raise ValueError(f"pose must be (x, y, heading), got {pose!r}")
         x, y, h = pose
+        h = check_real("heading", h)
         i0 = self.nearest(x, y)
         if math.cos(math.atan2(wp[i0][1] - y, wp[i0][0] - x) - h) < 0:
             i0 = (i0 + 1) % len(wp)  # the nearest waypoint is behind: lead on, not back
         return wp[i0:] + wp[:i0] + [wp[i0]]
+
+
+def _xy(name: str, point: Sequence[float]) -> tuple[float, float]:
+    """The first two items of ``point`` as finite floats, named in the error."""
+    if len(point) < 2:
+        raise ValueError(f"{name} must be a point (x, y), got {point!r}")
+    return check_real(f"{name} x", point[0]), check_real(f"{name} y", point[1])
 
 
 def lead_from(arena: Any, start: Sequence[float], waypoints: Sequence[Sequence[float]],
@@ -257,7 +287,7 @@ def lead_from(arena: Any, start: Sequence[float], waypoints: Sequence[Sequence[f
     it in front. The waypoint of a route nearest the robot can lie behind a wall; a leash
     pulled straight at it holds the robot against that wall (the maze, tuning seed 0: for the
     whole lesson)."""
-    x, y = check_real("start x", start[0]), check_real("start y", start[1])
+    x, y = _xy("start", start)
     if not (0.0 <= x <= arena.width and 0.0 <= y <= arena.height):
         raise ValueError(f"start ({x:g}, {y:g}) lies outside arena {arena.name!r}")
     arr = check_finite("waypoints", waypoints)
