@@ -1,8 +1,9 @@
 """Mutation score of the test suite over hippo's neural modules (mutmut 3).
 
 Run: ``nice -n 10 python tools/mutation.py [MODULE ...] [--sample N --seed S] [--survivors]
-[--json FILE]`` (default modules: ``NEURAL_MODULES``). Needs mutmut:
-``pip install -e ".[mutation]"``.
+[--json FILE]`` (default modules: ``NEURAL_MODULES``; the task metrics' modules,
+``hippo/tasks/{routes,passes,patrol_report,deployment}.py``, have their tests here too).
+Needs mutmut: ``pip install -e ".[mutation]"``.
 
 The tool builds a scratch copy of the project in ``--out`` (``hippo/``, ``tests/``, and
 ``pyproject.toml`` with a ``[tool.mutmut]`` section that mutates only the given modules and
@@ -42,6 +43,10 @@ ROOT = Path(__file__).resolve().parent.parent
 # each part's own save/load (RCSFAICA's parts) and the streamed fit, which reach into SFA
 PART_FILES = "tests/perception/test_part_files.py"
 STREAMED = "tests/perception/test_fit_streamed.py"
+# the task-level metrics: progress, laps, passes and stops; the deployment's failure counter
+ROUTES = "tests/tasks/test_routes.py"
+FAILURES = "tests/tasks/test_failure_counting.py"
+METRICS = "tests/tasks/test_task_metrics.py"
 
 # the fast test files run against each module's mutants (the slow ones are deselected anyway)
 DEFAULT_TESTS: dict[str, list[str]] = {
@@ -62,6 +67,10 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/perception/state_levels.py": ["tests/perception/test_states.py"],
     "hippo/perception/ica_params.py": ["tests/perception/test_ica.py"],
     "hippo/perception/reservoir_params.py": ["tests/perception/test_reservoir.py", PART_FILES],
+    "hippo/tasks/routes.py": [ROUTES, METRICS, "tests/tasks/test_patrol_arenas.py"],
+    "hippo/tasks/passes.py": [ROUTES, FAILURES, METRICS],
+    "hippo/tasks/patrol_report.py": [FAILURES, METRICS, "tests/tasks/test_patrol_arenas.py"],
+    "hippo/tasks/deployment.py": [FAILURES, METRICS],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -235,6 +244,43 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      "equivalent: differs only for two codes exactly 1e-12 apart"),
     ("hippo/timing/transitions.py", r"np.asarray\(tau, dtype=float\)", r"np.asarray\(tau, ",
      "equivalent: tuning() converts tau to float itself"),
+    ("hippo/tasks/routes.py", r'getattr\(self, "_dense_pts", None\) is None',
+     r'getattr\(self, "XX_dense_ptsXX", None\)',
+     "equivalent: a cache of the dense points (a miss recomputes the same points)"),
+    ("hippo/tasks/routes.py", r"return cls\(wps, closed=True\)", r"return cls\(wps, \)",
+     "equivalent: closed=True is Route's default"),
+    ("hippo/tasks/routes.py", r"if way and around <= detour \* length:", r"if way or around",
+     "equivalent: with no way round shortest_path gives (inf, []), never <= detour * length"),
+    ("hippo/tasks/passes.py", r"np.abs\(p - \(s_k \+ n \* L\)\) < radius", r"\) <= radius",
+     "equivalent: differs only for a progress exactly radius cm from the checkpoint's"),
+    ("hippo/tasks/passes.py", r"n0 = math.floor\(\(p.min\(\) - s_k - radius\) / L\)",
+     r"n0 = math.floor\(\(p.min\(\) - s_k \+ radius\) / L\)",
+     "equivalent while 2 radius < the route's length: a lap with a tick within radius of it is "
+     "still in the range"),
+    ("hippo/tasks/passes.py", r"n1 = math.ceil\(\(p.max\(\) - s_k \+ radius\) / L\)",
+     r"n1 = math.ceil\(\(p.max\(\) - s_k - radius\) / L\)",
+     "equivalent while 2 radius < the route's length: a lap with a tick within radius of it is "
+     "still in the range"),
+    ("hippo/tasks/routes.py", r"\.min\(\) < 15.0 for q in other", r"\.min\(\) <= 15.0",
+     "equivalent: differs only for a path point exactly 15 cm from the legs before"),
+    ("hippo/tasks/deployment.py", r'getattr\(agent.cells, "_w", np.zeros\(0\)\)',
+     r"np.zeros\(1\)", "equivalent: one zero weight has maximum 0 and is finite, as none"),
+    ("hippo/tasks/deployment.py", r"self.reset\(math.nan, -math.inf\)",
+     r"self.reset\(math.nan, None\)",
+     "equivalent: the first update (its start time NaN) sets the best progress unread"),
+    ("hippo/tasks/routes.py", r'side="right"\) - 1, 0, len\(self._s0\) - 1\)',
+     r"len\(self._s0\) \+ 1\)",
+     "equivalent: every _s0 is below the largest s (the length): the upper clip never binds"),
+    ("hippo/tasks/routes.py", r"np.mean\(shared or \[1.0\]\) <= 0.5",
+     r"np.mean\(shared or \[2.0\]\)",
+     "equivalent: no inner point stands for all shared; any value > 0.5 keeps the leg"),
+    ("hippo/tasks/passes.py", r"for n in range\(n0, n1 \+ 1\):", r"range\(n0, n1 \+ 2\)",
+     "equivalent: no tick lies within radius of the lap after n1"),
+    ("hippo/tasks/routes.py", r"\(\(s - self._s \+ L / 2\) % L - L / 2\) / L",
+     r"\(\(s - self._s - L / 2\) % L - L / 2\) / L",
+     "equivalent: - L/2 and + L/2 are the same modulo L"),
+    ("hippo/tasks/patrol_report.py", r"radius=PASS_RADIUS\) if lo <= a", r"^\) if lo <= a",
+     "equivalent: PASS_RADIUS is route_passes' default radius (30 cm)"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the

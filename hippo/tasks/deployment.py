@@ -109,7 +109,8 @@ def tally_failures(arrays: dict, route: Route, checkpoints: Sequence[Sequence[fl
 
 
 def _rss_mb() -> float:
-    """The process's resident memory now (MB), from /proc where there is one."""
+    """The process's resident memory now (MB), from /proc where there is one (elsewhere its
+    peak, ``ru_maxrss``: bytes on macOS, KiB on the BSDs and Linux)."""
     try:
         with open("/proc/self/statm") as f:
             pages = int(f.read().split()[1])
@@ -118,8 +119,10 @@ def _rss_mb() -> float:
         return pages * os.sysconf("SC_PAGE_SIZE") / 1e6
     except (OSError, ValueError, IndexError):
         import resource
+        import sys
 
-        return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e3
+        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+        return peak / 1e6 if sys.platform == "darwin" else peak * 1024 / 1e6
 
 
 def health(agent: Any, t: float) -> dict[str, Any]:
