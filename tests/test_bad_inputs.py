@@ -306,6 +306,11 @@ CASES: list[tuple[str, typing.Callable, type, str]] = [
     ("fit 3-D", lambda p: RCSFAICA(n_reservoir=20).fit(_U()[None]), V, r"\(T, 8\)"),
     ("fit strings", lambda p: RCSFAICA(n_reservoir=20).fit(_U().astype(str)), V, r"real"),
     ("fit complex", lambda p: RCSFAICA(n_reservoir=20).fit(_U().astype(complex)), V, r"real"),
+    # a cast to float used to drop the imaginary part silently (FastICA fitted the real part)
+    ("ica fit complex", lambda p: FastICA(n_components=2).fit(_U()[:, :3] + 1j), V,
+     r"^X must hold real numbers, got complex values"),
+    ("route complex", lambda p: Route([(0, 0), (10, 0), (10, 10j)]), V,
+     r"waypoints must hold real numbers, got complex"),
     ("fit bools", lambda p: RCSFAICA(n_reservoir=20).fit(_U() > .5), V, r"real"),
     ("fit None", lambda p: RCSFAICA(n_reservoir=20).fit(None), V, r"U must"),
     ("fit washout eats data", lambda p: RCSFAICA(n_reservoir=20, washout=250).fit(_U()), V,
