@@ -251,6 +251,7 @@ def test_a_wanted_stop_is_recognised_from_a_coactive_place():
     assert agent.mode == Mode.MOVE
     # and coactive = 0 disables the rule
     agent.drives.release("cp")
+    agent.drives.set_level("cp", 1.0)              # (released, it rises again from 0)
     agent.p = AgentParams(coactive=0.0)
     decide.recognise_stop()
     assert agent.mode == Mode.MOVE
@@ -362,6 +363,7 @@ def test_a_place_that_wins_where_a_due_stop_is_made_becomes_its_companion(tmp_pa
         brain.state, brain.entered_at = w, brain.t - since
         brain.wait_ended_at = brain.odometer - ran
         decide.mode, decide.current, decide._approach_t0 = Mode.APPROACH, (c, still), 0.0
+        decide._by_companion = False     # (an approach by C itself)
         decide.check_wait()
         assert agent.mode == Mode.WAIT
 
@@ -384,6 +386,7 @@ def test_a_place_that_wins_where_a_due_stop_is_made_becomes_its_companion(tmp_pa
     # ... timed by W's mean time to the stop (4.5 s from entering W), not C's 3 s
     assert decide._approach_t0 == pytest.approx(brain.entered_at + 4.5 - 3.0)
     assert not enter_w(40.0)             # not where the stop is due
+    assert enter_w(100.0, since=4.5)     # at exactly W's time to the stop: still due
     assert not enter_w(100.0, since=5.0)  # W's time to the stop is over: passed it
     decide._companions[(c, still)][c] = (3, 3.0)  # C itself won at more stops than W:
     assert not enter_w(100.0)                      # W is no companion
@@ -392,6 +395,7 @@ def test_a_place_that_wins_where_a_due_stop_is_made_becomes_its_companion(tmp_pa
     assert AgentParams(companions=0).companions == 0
     agent.p = AgentParams(coactive=0.6, runup_window=30.0, companions=0)
     assert not enter_w(100.0)            # companions = 0 disables the rule
+    stop_in_w(100.0, 4.0)                # ... and a due stop in W teaches nothing
     brain.places = None                  # (a test stub, not storable)
     save_snapshot(brain, tmp_path / "brain")
     restored = load_snapshot(tmp_path / "brain")

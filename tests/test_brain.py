@@ -267,6 +267,9 @@ def test_a_place_entered_where_another_usually_follows_stands_in_for_it():
     a, b, c = (brain.layer.find("place", i) for i in range(3))
     assert brain.state == b and brain.came_from == c
     assert brain.decide.alias_of(b, a)
+    brain.state = c                       # B is not where the robot is: no stand-in
+    assert not brain.decide.alias_of(b, a)
+    brain.state = b
     assert not brain.decide.alias_of(b, b) and not brain.decide.alias_of(a, b)  # not here
     # after A the map met C once only: B does not stand in for C
     brain, run = make()

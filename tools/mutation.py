@@ -2,7 +2,8 @@
 
 Run: ``nice -n 10 python tools/mutation.py [MODULE ...] [--sample N --seed S] [--survivors]
 [--json FILE]`` (default modules: ``NEURAL_MODULES``; the task metrics' modules,
-``hippo/tasks/{routes,passes,patrol_report,deployment}.py``, have their tests here too).
+``hippo/tasks/{routes,passes,patrol_report,deployment}.py``, and the closed loop's
+``hippo/{motor,soft_recognition,waits}.py`` have their tests here too).
 Needs mutmut: ``pip install -e ".[mutation]"``.
 
 The tool builds a scratch copy of the project in ``--out`` (``hippo/``, ``tests/``, and
@@ -47,6 +48,10 @@ STREAMED = "tests/perception/test_fit_streamed.py"
 ROUTES = "tests/tasks/test_routes.py"
 FAILURES = "tests/tasks/test_failure_counting.py"
 METRICS = "tests/tasks/test_task_metrics.py"
+# the motor layer, soft recognition and the wait rules, on synthetic observations and a
+# hand-made map
+MOTOR = "tests/test_motor.py"
+SOFT = "tests/test_soft_recognition.py"
 
 # the fast test files run against each module's mutants (the slow ones are deselected anyway)
 DEFAULT_TESTS: dict[str, list[str]] = {
@@ -71,6 +76,10 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/tasks/passes.py": [ROUTES, FAILURES, METRICS],
     "hippo/tasks/patrol_report.py": [FAILURES, METRICS, "tests/tasks/test_patrol_arenas.py"],
     "hippo/tasks/deployment.py": [FAILURES, METRICS],
+    # the closed loop's motor layer and the decider's soft recognition (and its wait rules)
+    "hippo/motor.py": [MOTOR, "tests/test_agent.py"],
+    "hippo/soft_recognition.py": [SOFT, "tests/test_agent.py", "tests/test_brain.py"],
+    "hippo/waits.py": ["tests/test_waits.py", SOFT, "tests/test_agent.py", "tests/test_brain.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -82,6 +91,17 @@ COMMON_TESTS = ["tests/test_bad_inputs.py", "tests/test_loaders_fuzz.py",
 # name), regex on the added line, reason). They
 # are listed apart and left out of the "adjusted" score; the raw score counts them.
 EXCLUDED: list[tuple[str, str, str, str]] = [
+    ("hippo/motor.py", r"rng_explore: .* = 0,", r"rng_explore: .* = 1,",
+     "equivalent: another default seed; the runs stay seeded, only the drift's draws differ"),
+    ("hippo/motor.py", r"ObstacleAvoidance\(sensors=self.sensors, robot=self.robot\)",
+     r"robot=None\)", "equivalent: the motor asks it only boxed_in, which reads no robot"),
+    ("hippo/soft_recognition.py", r"d = b.entered_at - since if since is not None else 0.0",
+     r"if \(since is not None\) or True else|else 1.0$",
+     "equivalent: the place entered before the current one was entered this episode"),
+    ("hippo/soft_recognition.py", r"and \(c, a\) in b.graph\):", r"has_state\(c\) or \(c, a\)",
+     "equivalent on learned maps: only a stop (C -> still@C) enters a state from its context"),
+    ("hippo/waits.py", r"self._entry_timed = False", r"self._entry_timed = None",
+     "equivalent: _entry_timed is only tested for truth (over and self._entry_timed)"),
     ("*", r"check_finite=False", r"check_finite=None",
      "equivalent: None is falsy, as False"),
     ("hippo/cognitive_map/quality.py", r"zip\(.*strict=True\)", r"zip\((?!.*strict=True)",
