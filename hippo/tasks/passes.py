@@ -16,8 +16,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from hippo._checks import check_finite, check_positive
-from hippo.tasks.routes import LapCounter, Route
+from hippo._checks import check_positive
+from hippo.tasks.routes import LapCounter, Route, checkpoints_xy, point_xy
 from hippo.types import Mode, wrap_angle
 
 __all__ = ["AngleLaps", "passes", "progress_along", "route_passes", "stops"]
@@ -44,7 +44,7 @@ def passes(arrays: dict, centre: Sequence[float], *, phase: int, radius: float =
     """Index ranges ``[a, b)`` of the passes by ``centre`` (within ``radius`` cm) during
     ``phase``; runs at most ``gap`` ticks apart are one pass, and a pass under way when the
     phase starts (the robot is still where the previous phase left it) does not count."""
-    cx, cy = _point("centre", centre)
+    cx, cy = point_xy("centre", centre)
     check_positive("radius", radius)
     check_positive("gap", gap, allow_zero=True)
     idx = np.flatnonzero(arrays["phase"] == int(phase))
@@ -83,7 +83,7 @@ def route_passes(arrays: dict, route: Route, checkpoint: Sequence[float], *, pha
     check_positive("radius", radius)
     if not route.closed:
         raise ValueError("route passes need a closed route (one pass per lap)")
-    cx, cy = _point("checkpoint", checkpoint)
+    cx, cy = point_xy("checkpoint", checkpoint)
     idx = np.flatnonzero(arrays["phase"] == int(phase))
     if idx.size == 0:
         return []
@@ -112,9 +112,7 @@ def stops(arrays: dict, checkpoints: Sequence[Sequence[float]], threshold: float
     at walls. Each stop: ``i0`` (first tick), ``duration``, ``checkpoint``, ``phase``,
     ``trial``, ``drive`` (the drive it waited for most, -1: none).
     """
-    cps = check_finite("checkpoints", checkpoints)
-    if cps.ndim != 2 or cps.shape[1] != 2 or len(cps) == 0:
-        raise ValueError(f"checkpoints must be one or more points (x, y), got shape {cps.shape}")
+    cps = checkpoints_xy(checkpoints)
     check_positive("threshold", threshold, allow_zero=True)
     check_positive("min_s", min_s, allow_zero=True)
     if not float(radius) > 0:   # math.inf: stops anywhere, each at its nearest checkpoint
@@ -156,10 +154,3 @@ def stops(arrays: dict, checkpoints: Sequence[Sequence[float]], threshold: float
         i = j
     return out
 
-
-def _point(name: str, point: Sequence[float]) -> tuple[float, float]:
-    """``point``'s ``(x, y)`` as finite floats (a longer sequence: its first two items)."""
-    xy = check_finite(name, point)
-    if xy.ndim != 1 or len(xy) < 2:
-        raise ValueError(f"{name} must be a point (x, y), got {point!r}")
-    return float(xy[0]), float(xy[1])

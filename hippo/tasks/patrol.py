@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_finite, check_int
+from hippo._checks import check_int
 from hippo.progress import Progress
 from hippo.tasks.patrol_report import PASS_RADIUS, pass_report, patrol_rounds
 from hippo.tasks.patrol_sets import (
@@ -35,7 +35,7 @@ from hippo.tasks.patrol_sets import (
     patrol_route,
     random_patrol,
 )
-from hippo.tasks.routes import LapCounter, Route, lead_from
+from hippo.tasks.routes import LapCounter, Route, checkpoints_xy, lead_from
 from hippo.tasks.session import Session
 from hippo.tasks.teaching import lessons_again
 from hippo.types import Mode, StateKind
@@ -83,10 +83,7 @@ class PatrolCourse:
                  names: Sequence[str], *, tour: bool = False) -> None:
         self.s, self.agent, self.dt = s, s.agent, s.world.dt
         self.route = route
-        cps = check_finite("checkpoints", checkpoints)
-        if cps.ndim != 2 or cps.shape[1] != 2 or len(cps) == 0:
-            raise ValueError(f"checkpoints must be one or more points (x, y), got shape "
-                             f"{cps.shape}")
+        cps = checkpoints_xy(checkpoints)
         if isinstance(names, str) or len(names) != len(cps) or len(set(names)) != len(names):
             raise ValueError(f"names must be one distinct drive name per checkpoint "
                              f"({len(cps)}), got {names!r}")

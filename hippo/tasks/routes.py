@@ -209,7 +209,7 @@ class Route:
         """Waypoints from ``start`` to ``goal`` along the route's direction (the waypoint after
         the one nearest ``start``, up to the one nearest ``goal``), then ``goal`` itself."""
         wp = self.waypoints
-        (x0, y0), (x1, y1) = (_xy(name, p) for name, p in (("start", start), ("goal", goal)))
+        (x0, y0), (x1, y1) = (point_xy(name, p) for name, p in (("start", start), ("goal", goal)))
         i, j = self.nearest(x0, y0), self.nearest(x1, y1)
         n = len(wp)
         return [wp[(i + k) % n] for k in range(1, (j - i) % n + 1)] + [(x1, y1)]
@@ -273,11 +273,19 @@ class Route:
         return wp[i0:] + wp[:i0] + [wp[i0]]
 
 
-def _xy(name: str, point: Sequence[float]) -> tuple[float, float]:
+def point_xy(name: str, point: Sequence[float]) -> tuple[float, float]:
     """The first two items of ``point`` as finite floats, named in the error."""
-    if len(point) < 2:
+    if np.ndim(point) != 1 or len(point) < 2:
         raise ValueError(f"{name} must be a point (x, y), got {point!r}")
     return check_real(f"{name} x", point[0]), check_real(f"{name} y", point[1])
+
+
+def checkpoints_xy(checkpoints: Sequence[Sequence[float]]) -> np.ndarray:
+    """``checkpoints`` as a finite ``(n, 2)`` float array, ``n >= 1``, or a ``ValueError``."""
+    cps = check_finite("checkpoints", checkpoints)
+    if cps.ndim != 2 or cps.shape[1] != 2 or len(cps) == 0:
+        raise ValueError(f"checkpoints must be one or more points (x, y), got shape {cps.shape}")
+    return cps
 
 
 def lead_from(arena: Any, start: Sequence[float], waypoints: Sequence[Sequence[float]],
@@ -287,7 +295,7 @@ def lead_from(arena: Any, start: Sequence[float], waypoints: Sequence[Sequence[f
     it in front. The waypoint of a route nearest the robot can lie behind a wall; a leash
     pulled straight at it holds the robot against that wall (the maze, tuning seed 0: for the
     whole lesson)."""
-    x, y = _xy("start", start)
+    x, y = point_xy("start", start)
     if not (0.0 <= x <= arena.width and 0.0 <= y <= arena.height):
         raise ValueError(f"start ({x:g}, {y:g}) lies outside arena {arena.name!r}")
     arr = check_finite("waypoints", waypoints)
