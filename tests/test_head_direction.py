@@ -75,6 +75,41 @@ def test_impossible_parameters_are_refused(kw, match):
         HeadingSectors(**kw)
 
 
+
+def test_the_hysteresis_bound_and_the_translation_threshold_are_exact():
+    n, margin = 4, 10 * DEG
+    bound = 2 * math.pi / n / 2 + margin      # 55 degrees from the sector's centre
+    s = HeadingSectors(n, margin=margin, min_step=0.1)
+    s.update(0.0, 1.0)
+    assert s.update(bound, 1.0) == 0           # exactly on the bound: kept (strictly beyond)
+    assert s.update(math.nextafter(bound, 1.0), 1.0) == 1
+    s.reset()
+    s.update(0.0, 1.0)
+    assert s.update(math.pi, 0.1) == 2         # exactly min_step: a translation
+    # the offset from the sector's centre is taken the short way round the circle: sector 3
+    # (centre 270 degrees) and a heading of -40 degrees (320, nearest sector 0) are 50 degrees
+    # apart, within the hysteresis
+    s.reset()
+    s.update(270 * DEG, 1.0)
+    assert s.update(-40 * DEG, 1.0) == 3
+    assert s.update(-170 * DEG, 1.0) == 2      # 100 degrees the short way: sector 2
+
+
+def test_a_zero_margin_or_min_step_is_allowed_and_the_margin_stays_below_half_a_sector():
+    s = HeadingSectors(4, margin=0.0, min_step=0.0)
+    s.update(0.0, 0.0)
+    assert s.update(46 * DEG, 0.0) == 1        # no hysteresis, every step translates
+    HeadingSectors(4, margin=0.6)              # above a third of a sector (0.52), below half
+    with pytest.raises(ValueError, match=r"margin must be below half a sector \(0.785 rad\), "
+                                         r"got 0.7853981"):
+        HeadingSectors(4, margin=math.pi / 4)
+    for kw, name in (({"n": 0}, "heading sectors"), ({"margin": -1.0}, "margin"),
+                     ({"min_step": -1.0}, "min_step")):
+        with pytest.raises(ValueError, match=rf"^{name} must"):
+            HeadingSectors(**{"n": 4, **kw})
+    with pytest.raises(ValueError, match=r"heading must be a finite number \(rad\)"):
+        HeadingSectors(4).nearest(math.inf)
+
 @pytest.mark.parametrize("heading, step, match", [
     (math.nan, 1.0, r"heading must be a finite number \(rad\), got nan"),
     (math.inf, 1.0, r"heading must be a finite number \(rad\), got inf"),

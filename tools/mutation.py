@@ -80,6 +80,10 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/motor.py": [MOTOR, "tests/test_agent.py"],
     "hippo/soft_recognition.py": [SOFT, "tests/test_agent.py", "tests/test_brain.py"],
     "hippo/waits.py": ["tests/test_waits.py", SOFT, "tests/test_agent.py", "tests/test_brain.py"],
+    # the decider's odometric anchoring (run-ups) and the place states' direction split
+    "hippo/runups.py": ["tests/test_runups.py", "tests/test_brain.py", "tests/test_waits.py", SOFT,
+                        "tests/test_agent.py"],
+    "hippo/head_direction.py": ["tests/test_head_direction.py", "tests/test_brain.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -102,6 +106,19 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      "equivalent on learned maps: only a stop (C -> still@C) enters a state from its context"),
     ("hippo/waits.py", r"self._entry_timed = False", r"self._entry_timed = None",
      "equivalent: _entry_timed is only tested for truth (over and self._entry_timed)"),
+    ("hippo/runups.py", r"if b.wait_ended_at is None or b.last_wait_drive is None or name",
+     r"is None and b.last_wait_drive",
+     "equivalent: with no anchor _in_order gives None and _stale True, as the early return"),
+    ("hippo/runups.py", r"if b.p.runup_window <= 0 or k < 0 or b.wait_ended_at is None:",
+     r"runup_window <= 0 and k < 0|runup_window < 0 or",
+     "equivalent: a window <= 0 leaves the gate's interval (run-up - window, run-up - "
+     "tolerance) empty"),
+    ("hippo/runups.py", r"if lap else 0$", r"if lap else 1$",
+     "equivalent: without a lap k only multiplies the lap, 0"),
+    ("hippo/runups.py", r'g.cached\("context-adjacency",', r'g.cached\((None|"XX|"CONTEXT)',
+     "equivalent: the cache key only names the map's cached adjacency"),
+    ("hippo/head_direction.py", r"ok = False", r"ok = None",
+     "equivalent: ok is only tested for truth"),
     ("*", r"check_finite=False", r"check_finite=None",
      "equivalent: None is falsy, as False"),
     ("hippo/cognitive_map/quality.py", r"zip\(.*strict=True\)", r"zip\((?!.*strict=True)",
