@@ -84,6 +84,9 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/runups.py": ["tests/test_runups.py", "tests/test_brain.py", "tests/test_waits.py", SOFT,
                         "tests/test_agent.py"],
     "hippo/head_direction.py": ["tests/test_head_direction.py", "tests/test_brain.py"],
+    # the decider's choice of transition, motor continuity, exploration and habituation
+    "hippo/decision.py": ["tests/test_decision.py", "tests/test_brain.py", "tests/test_agent.py",
+                          SOFT, "tests/test_waits.py", "tests/test_runups.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -117,6 +120,9 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      "equivalent: without a lap k only multiplies the lap, 0"),
     ("hippo/runups.py", r'g.cached\("context-adjacency",', r'g.cached\((None|"XX|"CONTEXT)',
      "equivalent: the cache key only names the map's cached adjacency"),
+    ("hippo/decision.py", r"self._companions: .* = \{\}", r"self._companions: .* = None",
+     "equivalent: None is SoftRecognition's class default, read as no companions and replaced "
+     "by {} at the first stop noted"),
     ("hippo/head_direction.py", r"ok = False", r"ok = None",
      "equivalent: ok is only tested for truth"),
     ("*", r"check_finite=False", r"check_finite=None",
