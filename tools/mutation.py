@@ -90,6 +90,10 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     # the decider's choice of transition, motor continuity, exploration and habituation
     "hippo/decision.py": ["tests/test_decision.py", "tests/test_brain.py", "tests/test_agent.py",
                           SOFT, "tests/test_waits.py", "tests/test_runups.py"],
+    # the closed loop's Brain: perceive, learn the map, rewards and run-ups, lifts, occlusion
+    "hippo/brain.py": ["tests/test_brain_rules.py", "tests/test_brain.py",
+                       "tests/test_decision.py", "tests/test_runups.py", "tests/test_agent.py",
+                       "tests/test_head_direction.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -126,6 +130,18 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
     ("hippo/decision.py", r"self._companions: .* = \{\}", r"self._companions: .* = None",
      "equivalent: None is SoftRecognition's class default, read as no companions and replaced "
      "by {} at the first stop noted"),
+    ("hippo/brain.py", r"if \(self.t < self._settle_until and ev.winner is not None",
+     r"if \(self.t <= self._settle_until and ev.winner",
+     "equivalent: at t == _settle_until it sets _settle_until = t, the value it has"),
+    ("hippo/brain.py", r'getattr\(self.places, "anchored", False\)',
+     r'getattr\(self.places, "anchored", None\)', "equivalent: only tested for truth"),
+    ("hippo/brain.py", r'getattr\(self.places, "lifted", lambda: None\)\(\) if moved',
+     r"lambda: 0\)", "equivalent: the return value of the default lifted is not used"),
+    ("hippo/brain.py", r"restore_inhibitions\(kept, self.pi.pose\[:2\]\)", r"pose\[:3\]\)",
+     "equivalent: restore_inhibitions reads only where[0] and where[1]"),
+    ("hippo/brain.py", r"ro = self.readouts.get\(cur\) if cur is not None else None",
+     r"if \(cur is not None\) or True else",
+     "equivalent: readouts are keyed by transitions, get(None) gives None"),
     ("hippo/head_direction.py", r"ok = False", r"ok = None",
      "equivalent: ok is only tested for truth"),
     ("hippo/tasks/patrol_sets.py", r"band = radius \+ 2.0 \* \(xs\[1\] - xs\[0\] if len",
