@@ -112,9 +112,10 @@ def load_npz(path: str | os.PathLike, required: Iterable[str] = ()) -> dict[str,
     if not path.is_file():
         raise CorruptFileError(f"{path} is not a file")
     try:
-        with np.load(path, allow_pickle=False) as data:
-            if not isinstance(data, np.lib.npyio.NpzFile):
-                raise ValueError("a single .npy array, not an .npz archive")
+        data = np.load(path, allow_pickle=False)
+        if not isinstance(data, np.lib.npyio.NpzFile):   # (a bare array is no context manager)
+            raise ValueError("a single .npy array, not an .npz archive")
+        with data:
             out = {k: data[k] for k in data.files}
     except Exception as exc:  # zip, zlib, header, dtype, size: any failure is a corrupt file
         why = repr(exc)
