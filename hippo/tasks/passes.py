@@ -153,4 +153,3 @@ def stops(arrays: dict, checkpoints: Sequence[Sequence[float]], threshold: float
                         "trial": int(arrays["trial"][i]), "drive": drive})
         i = j
     return out
-

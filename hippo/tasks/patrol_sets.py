@@ -20,12 +20,12 @@ from typing import Any
 import numpy as np
 from scipy import ndimage
 
-from hippo._checks import check_finite, check_int, check_seed
+from hippo._checks import check_int, check_seed
 from hippo.sim import arenas
 from hippo.sim.arena import Arena, _segment_clear
 from hippo.tasks.explore import arena_tour
 from hippo.tasks.patrol_report import PASS_RADIUS
-from hippo.tasks.routes import Route
+from hippo.tasks.routes import Route, checkpoints_xy
 
 __all__ = ["ARENA_CHECKPOINTS", "HIREL_WAITS", "MAX_WAIT_S", "MIN_WAIT_S", "ROUTE_KINDS",
            "TOUR_REACH", "check_patrol", "choose_route", "patrol_route", "random_patrol"]
@@ -199,11 +199,7 @@ def _course(checkpoints: Any, waits: Any) -> tuple[list[tuple[float, float]], li
     what is wrong: points that are not ``(x, y)`` (``(x, y, heading)`` failed in an unpacking),
     NaN or inf in them, two checkpoints on one spot (a route of no length), a wait that is no
     number (``None``, ``"9"``), waits that are not a list."""
-    cps = check_finite("checkpoints", checkpoints)
-    if cps.ndim != 2 or cps.shape[1] != 2:
-        raise ValueError(f"checkpoints must be a list of points (x, y) in cm, got shape "
-                         f"{cps.shape}")
-    pts = [(float(x), float(y)) for x, y in cps]
+    pts = [(float(x), float(y)) for x, y in checkpoints_xy(checkpoints)]
     for b, q in enumerate(pts):
         a = pts.index(q)
         if a != b:

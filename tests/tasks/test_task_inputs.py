@@ -182,7 +182,7 @@ CASES: list[tuple[str, typing.Callable, type, str]] = [
      r"^checkpoints 1 and 3 are the same point \(30, 30\)"),
     ("check_patrol (x, y, heading)",
      lambda: check_patrol(_arena(), [(30, 30, 0), (120, 120, 0)], [9, 9]), V,
-     r"^checkpoints must be a list of points \(x, y\) in cm, got shape \(2, 3\)"),
+     r"^checkpoints must be one or more points \(x, y\), got shape \(2, 3\)"),
     ("check_patrol checkpoint nan",
      lambda: check_patrol(_arena(), [(30, 30), (np.nan, 30)], [9, 9]), V,
      r"^checkpoints contains 1 non-finite"),
