@@ -102,6 +102,17 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/snapshot.py": [IO_RULES, "tests/test_snapshot.py", "tests/test_io.py", LOADERS_FUZZ],
     "hippo/_snapshot_decoder.py": [IO_RULES, "tests/test_snapshot.py", "tests/test_io.py",
                                    LOADERS_FUZZ],
+    # radial-basis place prototypes: k-means fit, activities, online recruitment, save/load
+    "hippo/perception/prototypes.py": ["tests/perception/test_prototypes_rules.py",
+                                       "tests/perception/test_prototypes.py",
+                                       "tests/perception/test_sklearn_conventions.py"],
+    # the sequence matching that re-anchors the reservoir after a lift
+    "hippo/perception/relocate.py": ["tests/perception/test_relocate_rules.py",
+                                     "tests/perception/test_relocate.py"],
+    # the reservoir's spectral radius (Arnoldi, or every eigenvalue)
+    "hippo/perception/spectral_radius.py": ["tests/perception/test_spectral_radius_rules.py",
+                                            "tests/perception/test_spectral_radius.py",
+                                            "tests/perception/test_reservoir.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -371,6 +382,50 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
     ("hippo/snapshot.py", r"e[ab].enc\([ab], \"[ab]\"\)", r"e[ab].enc\([ab], \"[AB]\"\)",
      "equivalent: same_state encodes both graphs (naming a and b) before _arrays_equal, so an "
      "unstorable part never reaches it; the path only names such a part"),
+    ("hippo/perception/spectral_radius.py", r"n = W.shape\[0\]", r"n = W.shape\[1\]",
+     "equivalent: W is square (n, n)"),
+    ("hippo/perception/spectral_radius.py", r'sla.eigs\(W, k=_K, which="LM", tol=0',
+     r'sla.eigs\(W, k=_K, tol=0,', 'equivalent: which="LM" is scipy\'s default'),
+    ("hippo/perception/spectral_radius.py", r'sla.eigs\(W, k=_K, which="LM", tol=0',
+     r'which="LM", ncv=', "equivalent: tol=0 (machine precision) is scipy's default"),
+    ("hippo/perception/spectral_radius.py", r"ncv=min\(_NCV, n - 1\)",
+     r"ncv=min\(_NCV, n (\+ 1|- 2)\)",
+     "equivalent: Arnoldi runs only for n >= _DENSE_BELOW = 512, where min(_NCV, n +- 1) is "
+     "_NCV = 100"),
+    ("hippo/perception/relocate.py", r'einsum\("kmi->k"', r'einsum\("KMI->K"',
+     "equivalent: einsum's upper-case subscripts name the same axes"),
+    ("hippo/perception/relocate.py", r"np.asarray\(moving, dtype=bool\)",
+     r"np.asarray\(moving, (dtype=None)?\)",
+     "equivalent: moving is only read by flatnonzero, which keeps the nonzero ticks a cast to "
+     "bool makes True"),
+    ("hippo/perception/relocate.py", r"self.winners = winners\[idx\].astype\(np.int64\)",
+     r"astype\(None\)",
+     "equivalent: place codes are integers, which float64 holds exactly; isin compares the "
+     "same values"),
+    ("hippo/perception/relocate.py", r"name:ǁfit__mutmut_\d+$",
+     r"^self._n = self._seen = (None|1)$",
+     "equivalent in fit: observe reads them only while active, and start() sets both to 0"),
+    ("hippo/perception/prototypes.py", r'if getattr\(self, "_cc_of", None\) is not C:',
+     r'getattr\((None, "_cc_of"|self, "XX_cc_ofXX"|self, "_CC_OF")',
+     "equivalent: a cache of the centres' squared norms (a miss recomputes the same norms)"),
+    ("hippo/perception/prototypes.py", r"if \(p.recruit_threshold > 0 and",
+     r"if \(p.recruit_threshold >= 0 and",
+     "equivalent: activities are >= 0, never below a threshold of 0"),
+    ("hippo/perception/prototypes.py", r"np.asarray\(y, float\)\[None\]",
+     r"np.asarray\(y, (None)?\)\[None\]",
+     "equivalent: np.vstack with the float64 centres makes the (float) row float64 anyway"),
+    ("hippo/perception/prototypes.py", r"span = float\(np.max\(np.abs\(Y\), initial=0.0\)\)",
+     r"initial=(None|1.0)\)\)|np.abs\(Y\), \)\)",
+     "equivalent: for Y with columns the max is defined and a floor of 1 (4 d) never "
+     "overflows; a Y with no columns is refused either way (numpy's or k-means' ValueError)"),
+    ("hippo/perception/prototypes.py", r'np.errstate\(invalid="ignore", divide="ignore"\)',
+     r'divide=None\)|np.errstate\(invalid="ignore", \)',
+     "equivalent: k-means++'s one division, D² / ΣD², is 0/0 (invalid, still ignored) when "
+     "every row is alike, never x/0"),
+    ("hippo/perception/prototypes.py", r'if fmt.dtype.kind != "U" or fmt.shape != \(\) or str',
+     r'if fmt.dtype.kind != "U" and fmt.shape != \(\) or str',
+     "equivalent: str() of a bytes or a non-scalar array has b'' or brackets, never the format "
+     "tag, so the text test alone refuses those"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the

@@ -101,12 +101,12 @@ class PlacePrototypes(ParamsEstimator):
         """Activities (T, n_prototypes) of a sequence of outputs (no recruitment)."""
         self._check_fitted()
         Y = _real("Y", Y)
+        given = Y.shape   # named as given: a row of the wrong length is not reported as (1, n)
         Y = Y[None] if Y.ndim == 1 else Y
         d = self.centres_.shape[1]  # type: ignore[union-attr]
         if Y.ndim != 2 or Y.shape[1] != d:
             raise ValueError(f"place-cell outputs must have shape ({d},) or (T, {d}) (the "
-                             f"dimension the prototypes were fitted on), got "
-                             f"{np.shape(Y) if np.ndim(Y) != 2 else Y.shape}")
+                             f"dimension the prototypes were fitted on), got {given}")
         return np.exp(-_sqdist(Y, self.centres_) / (2 * self.sigma_**2))  # type: ignore[operator]
 
     def step(self, y: np.ndarray) -> np.ndarray:
