@@ -113,6 +113,19 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/perception/spectral_radius.py": ["tests/perception/test_spectral_radius_rules.py",
                                             "tests/perception/test_spectral_radius.py",
                                             "tests/perception/test_reservoir.py"],
+    # the sensor guard (dead-sensor flags and imputation) in front of the place cells
+    "hippo/perception/sensor_guard.py": ["tests/perception/test_sensor_guard_rules.py",
+                                         "tests/perception/test_sensor_guard.py"],
+    # the slow pool (a leaky running mean of the SFA input), its checks and its saved models
+    "hippo/perception/slow_pool.py": ["tests/perception/test_slow_pool_rules.py",
+                                      "tests/perception/test_slow_pool.py", PART_FILES,
+                                      "tests/perception/test_relocate.py"],
+    # the unit-count rule read from the slowness spectrum
+    "hippo/perception/unit_count.py": ["tests/perception/test_unit_count_rules.py",
+                                       "tests/perception/test_unit_count.py"],
+    # the supervised ridge ceiling, cross-validated in blocks of time
+    "hippo/perception/ceiling.py": ["tests/perception/test_ceiling_rules.py",
+                                    "tests/perception/test_metrics.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -426,6 +439,53 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      r'if fmt.dtype.kind != "U" and fmt.shape != \(\) or str',
      "equivalent: str() of a bytes or a non-scalar array has b'' or brackets, never the format "
      "tag, so the text test alone refuses those"),
+    ("hippo/perception/sensor_guard.py", r"U = self._check\(U, fitted=False\)",
+     r"fitted=None\)", "equivalent: fitted is only tested for truth"),
+    ("hippo/perception/sensor_guard.py", r"np.cov\(U, rowvar=False\)", r"rowvar=None\)",
+     "equivalent: np.cov tests rowvar for truth; None transposes as False does"),
+    ("hippo/perception/sensor_guard.py", r"np.where\(stuck \| noisy, 1.0 \+ energy, 0.0\)",
+     r"2.0 \+ energy, 0.0\)",
+     "equivalent: a common shift keeps the flagged sensors' order, all still above the 0 of "
+     "the others"),
+    ("hippo/perception/sensor_guard.py", r"over = flags.sum\(axis=1\) > p.max_dead",
+     r"over = flags.sum\(axis=1\) >= p.max_dead",
+     "equivalent: with exactly max_dead flags the max_dead best scores (>= 1, the others 0) "
+     "are the flagged sensors, all kept"),
+    ("hippo/perception/sensor_guard.py", r'argsort\(-score\[over\], axis=1, kind="stable"\)',
+     r'argsort\(-score\[over\], kind="stable"\)|kind="STABLE"',
+     "equivalent: argsort's default axis is the last (1 of a 2-D array); numpy reads the "
+     "kind case-insensitively (checked: 'STABLE' sorts ties as 'stable')"),
+    ("hippo/perception/sensor_guard.py", r"flags\[over\] &= keep", r"flags\[over\] = keep",
+     "equivalent: in a row over max_dead the kept sensors (the best scores, >= 1) are all "
+     "flagged, so flags & keep is keep"),
+    ("hippo/perception/sensor_guard.py", r"np.diff\(win, axis=2\)", r"np.diff\(win, \)",
+     "equivalent: np.diff's default axis is the last, 2 of the (T, n, W) windows"),
+    ("hippo/perception/sensor_guard.py", r"rng_\[~full\] = np.inf", r"rng_\[~full\] = None",
+     "equivalent: rows without a full window are masked by full before any flag or count"),
+    ("hippo/perception/sensor_guard.py", r"flags = np.asarray\(flags, bool\)",
+     r"np.asarray\(flags, (None)?\)",
+     "equivalent: the flags are read only through any() and flatnonzero(), which take "
+     "nonzero as True as the bool cast does"),
+    ("hippo/perception/slow_pool.py", r"Z64 = np.asarray\(Z, dtype=np.float64\)",
+     r"Z64 = np.asarray\(Z, (dtype=None)?\)",
+     "equivalent: lfilter computes in its float64 coefficients' type (checked: float32 and "
+     "int64 input give float64, bit for bit as when cast first)"),
+    ("hippo/perception/slow_pool.py", r"M.astype\(Z.dtype, copy=False\)",
+     r"M.astype\(Z.dtype, (copy=None|copy=True)?\)",
+     "equivalent: np.concatenate copies M into a new array either way"),
+    ("hippo/perception/ceiling.py", r"sd\[sd < 1e-12\] = 1.0", r"sd\[sd <= 1e-12\] = 1.0",
+     "equivalent: differs only for a feature whose sd is exactly 1e-12"),
+    ("hippo/perception/ceiling.py", r"lab\[m\]\] = 1.0", r"lab\[m\]\] = 2.0",
+     "equivalent: targets of 2 double every read-out exactly (a power of two); the argmax is "
+     "the same"),
+    ("hippo/perception/ceiling.py", r"lstsq\(A, R\[train\].sum\(axis=0\), rcond=None\)",
+     r"lstsq\(A, R\[train\].sum\(axis=0\), \)", "equivalent: rcond=None is numpy's default"),
+    ("hippo/perception/ceiling.py", r"pred = np.full\(T, -1\)", r"pred = np.full\(T, (\+1|-2)\)",
+     "equivalent: the folds' blocks cover range(T) and the rest is set to -1 after them"),
+    ("hippo/perception/ceiling.py", r"if np.isfinite\(s\).any\(\) else -np.inf",
+     r"else \+np.inf", "equivalent: whether an inner fold has samples in the mask does not "
+     "depend on the penalty, so an outer fold's penalties are all -inf (or +inf) together and "
+     "the first is taken"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the

@@ -111,8 +111,8 @@ def ridge_ceiling(X: np.ndarray, labels: np.ndarray, n_classes: int | None = Non
     for k in range(folds):
         a, b = bounds[k] + gap, bounds[k + 1] - gap
         if b <= a:
-            raise ValueError(f"gap={gap} leaves no training samples in blocks of "
-                             f"{bounds[1] - bounds[0]}")
+            raise ValueError(f"gap={gap} leaves no training samples in a block of "
+                             f"{bounds[k + 1] - bounds[k]} samples")
         sel = np.flatnonzero(m[a:b]) + a
         G[k] = Z[sel].T @ Z[sel]
         R[k] = Z[sel].T @ Yt[sel]

@@ -181,7 +181,7 @@ class SensorGuard:
 
     def step(self, u: np.ndarray) -> np.ndarray:
         """One reading in, the guarded reading out (same as ``clean`` row by row)."""
-        u = np.asarray(u, dtype=float)
+        u = check_finite("reading", u)
         if not hasattr(self, "mean_"):
             raise RuntimeError("SensorGuard is not fitted yet; call fit(U) first")
         if u.shape != (self.n_sensors_,):
