@@ -114,6 +114,7 @@ def run(args: argparse.Namespace) -> dict:
         course.laps()
         state = {"learned": course.learned_waits(), "reproduced": lesson.reproduced,
                  "t_start": s.t, "segments": [], "health0": health(s.agent, 0.0)}
+        state["wall_s"] = time.perf_counter() - t0   # a run killed before its first segment
         ckpt.save(_checkpoint(meta, s, course, state))
     else:
         if state.get("meta") != meta:
