@@ -5,8 +5,9 @@ A ring corridor (200 x 100 cm, 30 cm wide) round a block with an alcove, built w
 patrol`` does: the route through the checkpoints (the wall follower's own loop where it passes
 them), the wall to explore along, 30 simulated minutes of exploration and the place cells
 fitted on it, the patrol robot, and the lesson. Then five loops alone, measured per pass by a
-checkpoint (seeds 0 and 1: 9/9 and 10/10 passes with a stop; on rings where the robot can
-follow the outer wall the wrong way round it fails: docs/tutorials/patrol.md).
+checkpoint (seeds 0-3: 10/10, 10/10, 9/10 and 10/10 passes with a stop along the outer wall,
+which ``wall_side`` takes where its follower goes round; along the inner wall, chosen before
+2026-11-27, 9/9, 10/10, 6/6 and 3/5, loops left unfinished: docs/tutorials/patrol.md).
 
     python scenarios/patrol_new_arena.py --out out/patrol-new-arena [--seed 0] [--quick]
 

@@ -34,8 +34,8 @@ from hippo.tasks.log import Log
 from hippo.tasks.routes import LapCounter, Route
 from hippo.types import GroundTruth, Observation
 
-__all__ = ["PAUSE_RATE", "PLACE_STATES", "Tour", "arena_tour", "explore", "learn_map",
-           "make_places", "wall_side", "wall_tour"]
+__all__ = ["OUTER_MAX_BACK", "OUTER_MIN_LAPS", "PAUSE_RATE", "PLACE_STATES", "Tour",
+           "arena_tour", "explore", "learn_map", "make_places", "wall_side", "wall_tour"]
 
 #: probability per exploration tick of a pause (2-30 s): about one pause a minute
 PAUSE_RATE = 0.003
@@ -161,6 +161,16 @@ def make_places(kind: str, arena: Arena, sensors: np.ndarray, units: int, seed: 
     return LearnedPlaceCells(model, protos, relocaliser=rel)
 
 
+#: the laps of a route's way round, in :func:`wall_side`'s probe, that make the wall outside
+#: the route's loop the one to follow, and the largest share of the follower's progress along
+#: the route that may run backwards: a follower that goes round, not one that turns back at
+#: a nook and shuttles (goal-arena's right wall: 0.3-1.7 laps, 29-46 % of its progress
+#: backwards; the outer walls of rings built with ArenaBuilder: 0-1.5 %).
+#: docs/results.md, "the wall outside the loop"
+OUTER_MIN_LAPS = 1.0
+OUTER_MAX_BACK = 0.1
+
+
 def wall_side(route: Route, arena: Arena, seed: int = 0, probe_s: float = 600.0) -> int:
     """The wall (-1 right, +1 left) a robot that will run ``route`` explores along, and
     follows on its moves (:attr:`hippo.motor.MotorParams.wall_side`).
@@ -171,22 +181,36 @@ def wall_side(route: Route, arena: Arena, seed: int = 0, probe_s: float = 600.0)
     wall, counter-clockwise, and ran its patrol backwards). Which way a wall follower goes
     round depends on the wall it finds (the outer wall of ``patrol-course``, the inner ring of
     ``goal-arena``), so the experimenter tries both: ``probe_s`` s of :func:`explore` from the
-    arena's start in a world of its own (seeded by ``seed``) per side, and the side whose tour
-    goes farther round the route its way wins. A route that encloses little
-    (:attr:`Route.winding` 0: out and back) is run both ways; it keeps the right wall, as
-    does a route neither side goes round its way (ties too)."""
+    arena's start in a world of its own (seeded by ``seed``) per side, counting laps of the
+    route its way round.
+
+    The wall outside the loop (the left one on a clockwise route) wins if its follower runs at
+    least ``OUTER_MIN_LAPS`` laps the route's way with at most ``OUTER_MAX_BACK`` of its
+    progress backwards; else the side that goes farther round it wins. Where both sides go round
+    (a ring whose corridor the follower can cross), the inner wall's loop is shorter and makes
+    more laps, but a follower of an inner block loses its wall at every convex corner, where a
+    move's heading can carry it across the corridor onto the outer wall, which it then follows
+    the other way round, into places never learned that way (rings and boxes built with
+    ``ArenaBuilder``, learned cells, draws whose side this changes: 81 of 522 passes with a
+    stop on the inner wall, 187 of 290 on the outer; docs/results.md).
+    A route that encloses little (:attr:`Route.winding` 0: out and back) is run both ways; it
+    keeps the right wall, as does a route neither side goes round its way (ties too)."""
     if route.winding == 0:
         return -1
-    laps = {}
+    laps, back = {}, {}
     for side in (-1, 1):
         world = World(arena, seed=seed)
         lap = LapCounter(route)
         lap.update(*world.truth.pose[:2])
         tour = explore(world, round(probe_s / world.dt), 0.0, seed, pause_rate=0.0,
                        desc=f"probing the {'left' if side > 0 else 'right'} wall", side=side)
-        for truth in tour.truths:
-            lap.update(*truth.pose[:2])
+        steps = np.diff([0.0] + [lap.update(*truth.pose[:2]) for truth in tour.truths])
         laps[side] = lap.turns
+        moved = np.abs(steps).sum()
+        back[side] = -steps[steps < 0].sum() / moved if moved > 0 else 1.0
+    outer = -route.winding
+    if laps[outer] >= OUTER_MIN_LAPS and back[outer] <= OUTER_MAX_BACK:
+        return outer
     return 1 if laps[1] > max(laps[-1], 0.0) else -1
 
 

@@ -64,10 +64,10 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
     ``heading_sectors`` (default: :data:`LEARNED_SECTORS` with learned cells, 1 with ground
     truth) splits each place state by the direction of travel. ``side`` is the wall the robot
     explores along and follows on its moves (-1 right, +1 left; default:
-    :func:`~hippo.tasks.explore.wall_side`'s probe, which a tour circling one block of two can
-    fool: a box with two blocks patrolled 1/41 and 4/49 with the probe's right wall, 23/23 and
-    21/23 with ``side=1``; an L-shaped ring 5/35 and 3/48 with its left wall, 17/17 and 11/15
-    with ``side=-1``; seeds 0 and 1). The checkpoints and waits are checked first
+    :func:`~hippo.tasks.explore.wall_side`'s probe, which takes the wall outside the route's
+    loop where its follower goes round: in rings built with ``ArenaBuilder`` the inner wall's
+    follower crossed the corridor and ran backwards; where the patrol runs its loop backwards
+    or misses most stops, give the other side). The checkpoints and waits are checked first
     (:func:`~hippo.tasks.patrol_sets.check_patrol`): a ``ValueError`` names the problem
     before any work."""
     arena_obj = _arena(arena)

@@ -298,6 +298,66 @@ def test_the_lesson_holds_a_robot_that_comes_the_wrong_way_round_only_once_it_tu
     assert not at(4.0) and not at(10.0)
 
 
+def _wide_ring():
+    from hippo.sim import ArenaBuilder
+    # a 45-cm corridor round a block: from the start (west corridor, heading north) the right
+    # wall follower takes the block, the left one the outer wall, and both go round clockwise
+    return (ArenaBuilder("wide-ring", 200, 150).outer_walls().box((45, 45, 155, 105))
+            .grid_locations(10, 7).start(22, 75, 1.5708).build())
+
+
+def test_where_both_walls_go_round_the_robot_follows_the_one_outside_the_loop():
+    from hippo.sim import World
+    from hippo.tasks import explore, patrol_route, wall_side
+    from hippo.tasks.explore import OUTER_MIN_LAPS
+
+    ring = _wide_ring()
+    cw = patrol_route(ring, [(22.0, 120.0), (178.0, 120.0), (178.0, 30.0), (22.0, 30.0)],
+                      "shortest")
+    assert cw.winding == -1
+    laps = {}
+    for side in (-1, 1):    # the premise, measured as wall_side measures it (seed 0, 600 s)
+        world = World(ring, seed=0)
+        lap = LapCounter(cw)
+        lap.update(*world.truth.pose[:2])
+        for t in explore(world, 3000, 0.0, 0, pause_rate=0.0, side=side).truths:
+            lap.update(*t.pose[:2])
+        laps[side] = lap.turns
+    # both go round clockwise, the right one (round the block: a shorter loop) more often
+    assert laps[-1] > laps[1] >= OUTER_MIN_LAPS
+    # the probe's larger count would take the block; the wall outside a clockwise loop is the
+    # left one, and it goes round at least OUTER_MIN_LAPS times: it wins
+    assert wall_side(cw, ring, 0) == 1
+    # in 60 s neither goes round once: the side that went farther its way, as before
+    assert wall_side(cw, ring, 0, 60.0) == -1
+    # counter-clockwise, no follower goes round the route's way from this start: the right
+    # wall, as for a route neither side goes round
+    ccw = patrol_route(ring, [(22.0, 30.0), (178.0, 30.0), (178.0, 120.0), (22.0, 120.0)],
+                       "shortest")
+    assert ccw.winding == 1 and wall_side(ccw, ring, 0) == -1
+
+
+def test_a_wall_that_turns_back_at_a_nook_is_not_taken_for_the_outer_loop(monkeypatch):
+    import importlib
+
+    from hippo.tasks import random_patrol
+    from hippo.tasks.patrol_sets import checked_route
+
+    # goal-arena, random_patrol's draw for seed 103: a counter-clockwise loop whose outer
+    # (right) wall follower turns back at the south nook; in the probe it makes 1.68 laps the
+    # route's way, but 30 % of its progress runs backwards (OUTER_MAX_BACK 10 %): the left wall
+    cps, waits = random_patrol("goal-arena", 3, 103)
+    _, route = checked_route("goal-arena", cps, waits)
+    ga = arenas.get("goal-arena")
+    ex = importlib.import_module("hippo.tasks.explore")   # the module, not the function
+    assert route.winding == 1 and ex.wall_side(route, ga, 103) == 1
+    # with shuttling allowed, more than OUTER_MIN_LAPS laps alone take the right wall
+    monkeypatch.setattr(ex, "OUTER_MAX_BACK", 0.5)
+    assert ex.wall_side(route, ga, 103) == -1
+    monkeypatch.setattr(ex, "OUTER_MAX_BACK", 0.25)
+    assert ex.wall_side(route, ga, 103) == 1
+
+
 def test_a_robot_explores_along_the_wall_that_takes_it_the_way_its_route_runs():
     from hippo.motor import Motor, MotorParams
     from hippo.sim import World
