@@ -35,7 +35,8 @@ def check_slow_pool(value: Any, name: str = "slow_pool") -> float:
         raise ValueError(f"{name} must be a number of ticks (0 = off), got {value!r}")
     v = float(value)
     if not (v == 0.0 or (math.isfinite(v) and v >= 1.0)):
-        raise ValueError(f"{name} must be 0 (off) or a time constant >= 1 tick, got {value!r}")
+        shown = value.item() if isinstance(value, np.generic) else value   # not np.float64(..)
+        raise ValueError(f"{name} must be 0 (off) or a time constant >= 1 tick, got {shown!r}")
     return v
 
 

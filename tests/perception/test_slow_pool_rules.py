@@ -38,6 +38,10 @@ def test_time_constant_edges_and_messages():
         check_slow_pool(float(np.nextafter(1.0, 0.0)))  # one step below 1
     with _exactly(ValueError, "slow_pool must be a number of ticks (0 = off), got '100'"):
         check_slow_pool("100")
+    # a numpy scalar is shown as the number it holds, not as np.float64(0.5)
+    with _exactly(ValueError, "slow_pool must be 0 (off) or a time constant >= 1 tick, "
+                              "got 0.5"):
+        check_slow_pool(np.float64(0.5))
     with _exactly(ValueError, "tau must be 0 (off) or a time constant >= 1 tick, got -2"):
         with_pool(np.ones((3, 2)), -2)
     with _exactly(ValueError, "slow_pool: an online pool needs a time constant >= 1 tick, "
