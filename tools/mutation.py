@@ -55,6 +55,11 @@ SOFT = "tests/test_soft_recognition.py"
 # the save/load rules on hand-written files; the loaders' fuzz tests
 IO_RULES = "tests/test_io_rules.py"
 LOADERS_FUZZ = "tests/test_loaders_fuzz.py"
+# context states on synthetic place sequences, and their rules on hand-written ones
+CONTEXTS = ["tests/perception/test_contexts.py", "tests/perception/test_contexts_rules.py",
+            "tests/perception/test_context_tree_rules.py",
+            "tests/perception/test_place_merges_rules.py", "tests/perception/test_states.py",
+            "tests/test_agent.py"]
 
 # the fast test files run against each module's mutants (the slow ones are deselected anyway)
 DEFAULT_TESTS: dict[str, list[str]] = {
@@ -126,6 +131,10 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     # the supervised ridge ceiling, cross-validated in blocks of time
     "hippo/perception/ceiling.py": ["tests/perception/test_ceiling_rules.py",
                                     "tests/perception/test_metrics.py"],
+    # context states: splits by the way in, merges of contexts and of places, the G-test
+    "hippo/perception/contexts.py": CONTEXTS,
+    "hippo/perception/context_tree.py": CONTEXTS,
+    "hippo/perception/place_merges.py": CONTEXTS,
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -486,6 +495,32 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      r"else \+np.inf", "equivalent: whether an inner fold has samples in the mask does not "
      "depend on the penalty, so an outer fold's penalties are all -inf (or +inf) together and "
      "the first is taken"),
+    ("hippo/perception/context_tree.py", r"\* o.sum\(axis=0, keepdims=True\) / o.sum\(\)",
+     r"\* o.sum\(axis=0, (keepdims=False)?\) / o.sum\(\)",
+     "equivalent: the column sums (c,) broadcast against the row sums (r, 1) as (1, c) do"),
+    ("hippo/perception/place_merges.py", r"counts\[f\(i\)\] = counts.get\(f\(i\), 0\) \+ 1",
+     r"counts.get\(f\(i\), 1\) \+ 1|counts.get\(f\(i\), 0\) \+ 2",
+     "equivalent: every count n becomes n + 1 (or 2 n); top only takes their argmax, ties alike"),
+    ("hippo/perception/contexts.py", r"if self._history and self._entered is not None:",
+     r"if self._history or self._entered is not None:",
+     "equivalent: observe sets the history and the entry time together, reset clears both"),
+    ("hippo/perception/contexts.py", r"zip\(groups, children, strict=True\)",
+     r"zip\(groups, children, (strict=(False|None))?\)",
+     "equivalent: one child is made per group, the lengths are equal"),
+    ("hippo/perception/contexts.py", r"for j in range\(i \+ 1, len\(kids\)\):",
+     r"for j in range\((len\(kids\)|i \+ 1, |i - 1, len\(kids\))\):",
+     "equivalent: a set never differs from itself, _different is symmetric in its sets, and "
+     "every pair i < j is still compared"),
+    ("hippo/perception/contexts.py", r"node.cid, node.route, node.default, node.pos = keep, \{\}",
+     r"None, [-+]?\d+$", "equivalent: a leaf's pos is never read; a split sets it"),
+    ("hippo/perception/contexts.py", r"for i in self._data.get\(place, \(\)\)",
+     r"self._data.get\(place, (None)?\)",
+     "equivalent: a live id's place always has its kept stays (made with its tree; a join "
+     "gives the surviving id the kept place)"),
+    ("hippo/perception/contexts.py", r"self._entered: float \| None = None",
+     r"self._entered: float \| None = \"\"",
+     "equivalent: reset empties the history, so the entry time is not read before observe "
+     "sets it"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the

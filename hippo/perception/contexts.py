@@ -196,13 +196,18 @@ class ContextStates(PlaceMerges):
         place = self._keys[cid].place
         nxt = [self.same(i.next) for i in self._data.get(place, ())
                if self._leaf_of(place, i) == cid]
-        if not nxt:
-            return {}
-        vals, counts = np.unique(np.array(nxt, dtype=object), return_counts=True)
-        return {v: float(c) / len(nxt) for v, c in zip(vals.tolist(), counts, strict=True)}
+        counts: dict[Hashable, int] = {}
+        for v in nxt:
+            counts[v] = counts.get(v, 0) + 1
+        try:
+            order = sorted(counts)  # ascending, as np.unique gave them
+        except TypeError:           # labels of mixed types: as first seen
+            order = list(counts)
+        return {v: counts[v] / len(nxt) for v in order}
 
     def describe(self, cid: int) -> str:
-        """``C`` for an unsplit place, ``C|B`` or ``C|B,{A1 A2}`` for a context."""
+        """``C`` for an unsplit place, ``C|1:B`` (B one place back) or ``C|1:B,2:{A1 A2}`` for a
+        context."""
         k = self.key(cid)
         if not k.history:
             return str(k.place)
