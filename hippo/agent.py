@@ -136,8 +136,9 @@ class Agent:
 
         ``truth`` (``World.truth``) is needed only by ground-truth place cells."""
         last_t = self._last_t
-        ir, self._last_t = check_observation(obs, self.sensors.n, last_t)
-        self._check_clock(getattr(obs, "tick", None), last_t)
+        ir, t = check_observation(obs, self.sensors.n, last_t)
+        self._check_clock(getattr(obs, "tick", None), last_t, t)
+        self._last_t = t   # (a refused observation moves neither the time nor the tick)
         tick = self.brain._step(obs, truth, ir)
         command = self.motor.act(obs, tick)
         if command.gave_up:
@@ -145,22 +146,23 @@ class Agent:
         self.last_tick = tick
         return command.wheels
 
-    def _check_clock(self, tick: Any, last_t: float) -> None:
+    def _check_clock(self, tick: Any, last_t: float, t: float) -> None:
         """Refuse a world whose clock runs at another step than the brain's ``dt``: the drives,
         time cells and learned delays integrate ``BrainParams.dt`` on every tick, so a
         ``World(dt=0.5)`` would stretch every delay 2.5 times in silence. The step is the time
         per tick between two observations the agent saw (ticks it did not see, such as the
         pauses ``learn_map`` leaves out, divide out; a repeated tick or a clock that does not
-        count ticks is not checked)."""
-        last, self._last_tick = self._last_tick, (
+        count ticks is not checked). The tick is kept once it passes (``t`` is this
+        observation's time, ``last_t`` the previous one's)."""
+        last, now = self._last_tick, (
             tick if type(tick) is int or isinstance(tick, np.integer) else None)
-        if last is None or self._last_tick is None or self._last_tick <= last:
-            return
-        step = (self._last_t - last_t) / (self._last_tick - last)
-        dt = self.params.brain.dt
-        if abs(step - dt) > 1e-6 * dt + 1e-8:
-            raise ValueError(
-                f"the observations' clock runs {step:.6g} s per tick (obs.t {last_t:.6g} at "
-                f"tick {last}, {self._last_t:.6g} at tick {self._last_tick}), but the agent's "
-                f"BrainParams.dt is {dt:g} s: give the World and the agent the same step "
-                f"(World(dt={dt:g}), or AgentParams(dt=<the world's dt>))")
+        if last is not None and now is not None and now > last:
+            step = (t - last_t) / (now - last)
+            dt = self.params.brain.dt
+            if abs(step - dt) > 1e-6 * dt + 1e-8:
+                raise ValueError(
+                    f"the observations' clock runs {step:.6g} s per tick (obs.t {last_t:.6g} at "
+                    f"tick {last}, {t:.6g} at tick {now}), but the agent's BrainParams.dt is "
+                    f"{dt:g} s: give the World and the agent the same step (World(dt={dt:g}), or "
+                    f"AgentParams(dt=<the world's dt>))")
+        self._last_tick = now
