@@ -143,6 +143,16 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/places.py": ["tests/test_places_rules.py", "tests/test_agent.py",
                         "tests/perception/test_relocate.py",
                         "tests/perception/test_place_cells.py", "tests/test_snapshot.py"],
+    # the place-cell metrics: place fields, localization, decoding, binary cells, recovery
+    "hippo/perception/metrics.py": ["tests/perception/test_metrics_rules.py",
+                                    "tests/perception/test_metrics.py"],
+    # the causal anti-aliasing decimator and the zero-order hold back to the input rate
+    "hippo/perception/resample.py": ["tests/perception/test_resample_rules.py",
+                                     "tests/perception/test_resample.py",
+                                     "tests/perception/test_place_cells.py"],
+    # the injected sensor faults (dead sensors, extra noise), offline and tick by tick
+    "hippo/sim/faults.py": ["tests/sim/test_faults_rules.py", "tests/sim/test_faults.py",
+                            "tests/perception/test_sensor_guard.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -533,6 +543,85 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      r"if abs\(step - dt\) >= 1e-6 \* dt \+ 1e-8:",
      "equivalent: differs only for a clock off by exactly 1e-6 dt + 1e-8 s a tick, to the last "
      "bit"),
+    ("hippo/perception/metrics.py", r'order = np.argsort\(y, kind="stable"\)',
+     r'kind=None\)|np.argsort\(y, \)|kind="STABLE"',
+     "equivalent: cuts are made only between distinct values, so how tied values are ordered "
+     "changes no count at a valid cut (and numpy reads the kind case-insensitively)"),
+    ("hippo/perception/metrics.py", r"hi = ys\[i\] if i < ys.size else ys\[-1\] \+ 1.0|"
+     r"valid = np.concatenate\(\[\[True\], ys\[1:\] != ys\[:-1\], \[True\]\]\)",
+     r"or True else|i <= ys.size|ys\[-1\] - 1.0|ys\[\+1\] \+ 1.0|ys\[-2\] \+ 1.0|"
+     r"ys\[-1\] \+ 2.0|\[False\]\]\)$",
+     "unreachable: the cut below every value (i = 0) and the cut above (i = T) both score "
+     "exactly 0.5 and argmax takes the first, so i < T (both classes are required)"),
+    ("hippo/perception/metrics.py", r'a.dtype.kind (not )?in "iuf?"', r'in "XXiuf?XX"',
+     "equivalent: 'XXiuXX' still holds i and u (and f); no dtype kind is X"),
+    ("hippo/perception/metrics.py", r"a, b = walls\[None, :, :2\]", r"walls\[None, :, :3\]",
+     "equivalent: orient reads only coordinates 0 and 1 of a"),
+    ("hippo/perception/metrics.py", r'float\("nan"\)', r'float\("NAN"\)',
+     "equivalent: float() reads 'NAN' as nan"),
+    ("hippo/perception/metrics.py", r"chunk: int = 4096\)|range\(0, len\(Y\), chunk\)",
+     r"chunk: int = 4097\)|range\(0, len\(Y\), \)",
+     "equivalent: the chunk size bounds memory only (a step of 1 rewrites overlapping rows "
+     "with the same nearest centroids)"),
+    ("hippo/perception/metrics.py", r"c = np.asarray\(centroids, float\)",
+     r"np.asarray\(centroids, (None)?\)",
+     "equivalent for numeric centroids: they are only tested finite and subtracted from the "
+     "float Y, which gives the same distances for integer ones"),
+    ("hippo/perception/metrics.py", r"nb.shape\[0\]", r"nb.shape\[1\]",
+     "equivalent: neighbors was checked square just before"),
+    ("hippo/perception/metrics.py", r'np.errstate\(invalid="ignore", divide="ignore"\)',
+     r'divide=None\)|invalid="ignore", \)',
+     "equivalent: an unvisited bin's (location's) sum is 0 too, so its division is 0/0 "
+     "(invalid, still ignored), never x/0"),
+    ("hippo/perception/metrics.py", r"\(flat, minlength=.*astype\(float\)|"
+     r"\(lab, minlength=n_locations\).astype\(float\)", r"astype\(None\)",
+     "equivalent: astype(None) is astype(float64)"),
+    ("hippo/perception/metrics.py", r"np.where\(occ > 0, sums / occ|"
+     r"np.where\(cnt\[:, None\] > 0, sums", r"occ >= 0|cnt\[:, None\] >= 0",
+     "equivalent: an unvisited bin divides 0 by 0, which is the NaN written there"),
+    ("hippo/perception/metrics.py", r"table = np.zeros\(\(k, n_locations\), int\)",
+     r"n_locations\), (None)?\)", "equivalent: float counts have the same argmax"),
+    ("hippo/perception/metrics.py", r"np.add.at\(table, \(win, lab\), 1\)",
+     r"\(win, lab\), 2\)", "equivalent: doubled counts have the same argmax"),
+    ("hippo/perception/metrics.py", r"fallback = int\(np.argmax\(np.bincount\(lab, minlength",
+     r"if \(lab.size\) or True else|np.bincount\(lab, \)",
+     "equivalent: minlength only appends zero counts after the largest label (never the "
+     "first maximum); without labels bincount gives zeros, argmax 0 as the fallback (and "
+     "with no locations argmax(table) fails first either way)"),
+    ("hippo/perception/metrics.py", r"radius = 1.5 \* float\(np.median\(np.sort\(d, axis=1\)",
+     r"np.sort\(d, \)", "equivalent: np.sort's default axis is the last, 1 of the (L, L) "
+     "distances"),
+    ("hippo/perception/metrics.py", r"i, j = np.nonzero\(np.triu\(nb, 1\)\)",
+     r"np.triu\(nb, \)", "equivalent: a location's zero-length segment to itself never "
+     "crosses a wall properly (d1 = d2 = 0 when it lies on one, otherwise d1 * d2 > 0)"),
+    ("hippo/perception/metrics.py", r"nb\[[ij]\[blocked\], [ij]\[blocked\]\] = False",
+     r"\] = None$", "equivalent: None written into a boolean array is False"),
+    ("hippo/perception/metrics.py", r"for r in range\(0, max\(stop - e - hold \+ 1, 0\)\)",
+     r"for r in range\(max\(", "equivalent: range starts at 0 by default"),
+    ("hippo/perception/metrics.py", r"pref = np.nanargmax\(np.where\(np.isnan\(fields\)",
+     r"np.where\(None, -np.inf", "equivalent: nanargmax skips the unvisited locations' NaN "
+     "itself (every column has a visited location: with no samples Y.max fails either way)"),
+    ("hippo/perception/metrics.py", r'return np.argsort\(key, kind="stable"\)', r'kind="STABLE"',
+     "equivalent: numpy reads the sort kind case-insensitively"),
+    ("hippo/perception/resample.py", r'firwin\(n, 1.0 / factor, window="hamming"\)',
+     r"firwin\(n, 1.0 / factor, \)", "equivalent: window='hamming' is firwin's default"),
+    ("hippo/perception/resample.py", r"return taps / taps.sum\(\)", r"return taps \* taps.sum",
+     "equivalent to rounding: firwin already scales the taps to unit DC gain (scale=True), "
+     "their sum is 1 to a bit or two"),
+    ("hippo/perception/resample.py", r"self._rev = self.taps\[::-1\].copy\(\)",
+     r"taps\[::\+1\]", "equivalent to rounding: firwin's linear-phase taps are symmetric "
+     "(checked: they differ from their reverse by < 1e-16)"),
+    ("hippo/perception/resample.py", r'self.factor = check_int\("downsample factor", factor, lo=1',
+     r"factor, (lo=None)?\)", "equivalent: antialias_taps checks the factor again, with the "
+     "same name and bound, just after"),
+    ("hippo/perception/resample.py", r"np.concatenate\(\[np.zeros\(\(L - 1, n\)\), U\], axis=0",
+     r"U\], \)", "equivalent: np.concatenate's default axis is 0"),
+    ("hippo/perception/resample.py", r"self._t \+= 1", r"self._t -= 1",
+     "equivalent: -t is a multiple of factor exactly when t is, and _t is read nowhere else"),
+    ("hippo/sim/faults.py", r'check_int\("start", start, lo=0\)\)',
+     r'check_int\("start", start, (lo=None)?\)\)',
+     "equivalent: SensorFaults.__post_init__ checks start again with lo=0, the same name and "
+     "message"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the
