@@ -370,11 +370,17 @@ def recovery_times(correct: np.ndarray, events: np.ndarray, *, hold: int = 5,
     if ev.ndim != 1 or (ev.size and (not np.issubdtype(ev.dtype, np.integer) or ev.min() < 0
                                       or ev.max() >= T or np.any(np.diff(ev) < 0))):
         raise ValueError(f"events must be sorted tick indices in [0, {T}), got {ev!r:.80}")
+    if horizon is not None:
+        h = np.atleast_1d(horizon)
+        if h.ndim != 1 or not h.size or h.dtype == bool or \
+                not np.issubdtype(h.dtype, np.integer) or h.min() < 0:
+            raise ValueError(f"horizon must be a number of ticks >= 0, or one per event (the "
+                             f"last repeated), got {horizon!r:.80}")
     out = np.full(ev.size, np.nan)
     for i, e in enumerate(ev):
         stop = ev[i + 1] if i + 1 < ev.size else T
         if horizon is not None:
-            stop = min(stop, e + int(np.atleast_1d(horizon)[min(i, np.size(horizon) - 1)]))
+            stop = min(stop, e + int(h[min(i, h.size - 1)]))
         for r in range(0, max(stop - e - hold + 1, 0)):
             if correct[e + r: e + r + hold].all():
                 out[i] = r

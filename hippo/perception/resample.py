@@ -99,6 +99,7 @@ def hold(Y: np.ndarray, T: int, factor: int, initial: np.ndarray) -> np.ndarray:
     instant get ``initial``.
     """
     Y = np.asarray(Y)
+    factor = check_int("factor", factor, lo=1)
     if factor == 1:
         return Y[:T].copy()
     out = np.empty((T, Y.shape[1]), dtype=Y.dtype)

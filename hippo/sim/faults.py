@@ -143,6 +143,8 @@ class FaultInjector:
         u = np.asarray(u, dtype=float)
         if u.ndim != 1:
             raise ValueError(f"a reading must be a 1-D sensor vector, got shape {u.shape}")
+        # refused before the start tick as after it, and a refused reading counts no tick
+        u = check_finite("sensor matrix U", u)
         t = self.tick
         self.tick += 1
         if t < self.faults.start:

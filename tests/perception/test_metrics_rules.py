@@ -375,3 +375,15 @@ def test_recovery_refusals():
             "events must be sorted tick indices in [0, 50), got array([30, 10])")
     _raises(lambda: M.recovery_times(ok, np.array([-1])),
             "events must be sorted tick indices in [0, 50), got array([-1])")
+
+
+def test_recovery_refuses_a_horizon_that_is_no_number_of_ticks():
+    c = np.ones(20, dtype=bool)
+    msg = "horizon must be a number of ticks >= 0, or one per event (the last repeated), got "
+    for bad in (-1, [3, -1], [], 2.5, [np.nan], True, [[3]]):
+        with pytest.raises(ValueError, match="^" + re.escape(msg + f"{bad!r}"[:80]) + "$"):
+            M.recovery_times(c, [0, 5], horizon=bad)
+    # 0 ticks: no search at all (NaN), an integer array one per event
+    assert np.isnan(M.recovery_times(c, [0], horizon=0)[0])
+    np.testing.assert_array_equal(M.recovery_times(c, [0, 5], horizon=np.array([5, 5])),
+                                  [0.0, 0.0])

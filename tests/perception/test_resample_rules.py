@@ -122,3 +122,12 @@ def test_refusals_word_for_word():
         d.offline(np.ones(10))
     with pytest.raises(ValueError, match=re.escape("reading u must be 1-D, got shape (2, 2)")):
         d.push(np.ones((2, 2)))
+
+
+def test_hold_refuses_a_factor_below_one():
+    for bad in (0, -2):
+        with pytest.raises(ValueError, match="factor"):
+            hold(np.zeros((3, 2)), 6, bad, np.zeros(2))
+    # factor 2 over 6 ticks: instants at ticks 1, 3, 5 (k = (t + 1) // 2 - 1), tick 0 initial
+    out = hold(np.arange(6.0).reshape(3, 2), 6, 2, np.array([-1.0, -1.0]))
+    np.testing.assert_array_equal(out[:, 0], [-1, 0, 0, 2, 2, 4])

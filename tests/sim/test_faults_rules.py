@@ -113,3 +113,17 @@ def test_refusals_word_for_word():
     with pytest.raises(TypeError, match="^" + re.escape(
             "faults must be SensorFaults (e.g. SensorFaults.of({1: 'stuck0'})), got dict") + "$"):
         FaultInjector({1: "stuck0"})
+
+
+def test_a_non_finite_reading_is_refused_before_the_start_tick_too_and_counts_no_tick():
+    inj = FaultInjector(SensorFaults.of({0: "stuck0"}, start=2), seed=0)
+    bad = np.array([0.5, np.nan, 0.2])
+    for _ in range(2):   # before the start tick as after it, and the tick does not move
+        with pytest.raises(ValueError, match=re.escape(
+                "sensor matrix U contains 1 non-finite value(s) (NaN or inf)")):
+            inj(bad)
+    assert inj.tick == 0
+    u = np.array([0.5, 0.4, 0.2])
+    np.testing.assert_array_equal(inj(u), u)          # tick 0, 1: before the fault starts
+    np.testing.assert_array_equal(inj(u), u)
+    assert inj(u)[0] == 0.0                           # tick 2: sensor 0 stuck at 0
