@@ -49,7 +49,8 @@ from hippo.tasks.deployment import (
     health,
     tally_failures,
 )
-from hippo.tasks.patrol import PatrolCourse, PatrolPhase, patrol_route
+from hippo.tasks.patrol import PatrolCourse, PatrolPhase
+from hippo.tasks.patrol_sets import choose_route, tour_of_side
 
 Phase = PatrolPhase
 
@@ -127,10 +128,12 @@ def run(args: argparse.Namespace) -> dict:
         s = Session(state["world"], state["agent"], Log(n_drives=len(args.checkpoints)),
                     obs=state["obs"])
         s.world.detach(s.teacher)
-        course = PatrolCourse(s, patrol_route(args.arena, args.checkpoints,
-                                              getattr(args, "route", "auto")),
-                              args.checkpoints, [f"checkpoint-{k}" for k in
-                                                 range(1, len(args.checkpoints) + 1)])
+        kind, loop = choose_route(args.arena, args.checkpoints, getattr(args, "route", "auto"))
+        # the route the lesson was given: a tour along the wall the robot follows
+        loop = tour_of_side(args.arena, args.checkpoints, kind, loop,
+                            s.agent.params.motor.wall_side)
+        course = PatrolCourse(s, loop, args.checkpoints, [f"checkpoint-{k}" for k in
+                                                          range(1, len(args.checkpoints) + 1)])
         course.loop = state["loop"]
         state = state["run"]
         print(f"resuming from {ckpt.latest()} ({len(state['segments'])} segments done, "

@@ -26,7 +26,7 @@ from hippo.tasks.explore import PLACE_STATES, explore, make_places, place_model,
 from hippo.tasks.log import Log
 from hippo.tasks.passes import stops
 from hippo.tasks.patrol import PatrolCourse, PatrolPhase
-from hippo.tasks.patrol_sets import _arena, checked_route
+from hippo.tasks.patrol_sets import _arena, checked_route, tour_of_side
 from hippo.tasks.session import Session
 
 __all__ = ["LEARNED_SECTORS", "Lesson", "teach_patrol"]
@@ -67,7 +67,10 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
     :func:`~hippo.tasks.explore.wall_side`'s probe, which takes the wall outside the route's
     loop where its follower goes round: in rings built with ``ArenaBuilder`` the inner wall's
     follower crossed the corridor and ran backwards; where the patrol runs its loop backwards
-    or misses most stops, give the other side). The checkpoints and waits are checked first
+    or misses most stops, give the other side). On a wall tour the robot is led (and its
+    passes counted) along the tour of the wall it follows, where that tour passes every
+    checkpoint (:func:`~hippo.tasks.patrol_sets.tour_of_side`). The checkpoints and waits are
+    checked first
     (:func:`~hippo.tasks.patrol_sets.check_patrol`): a ``ValueError`` names the problem
     before any work."""
     arena_obj = _arena(arena)
@@ -95,6 +98,7 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
     names = [f"checkpoint-{k}" for k in range(1, len(checkpoints) + 1)]
     log = Log(n_drives=len(checkpoints))
     side = wall_side(loop, arena_obj, seed) if side is None else side
+    loop = tour_of_side(arena, checkpoints, kind, loop, side)   # led along the wall it follows
     # exploration: place cells only (HIREL learns the map on the leash)
     tour = explore(world, round(explore_min * 60 / world.dt), 0.0, seed, log, side=side)
     cells = make_places(place_cells, arena_obj, tour.sensors, units, seed, places,

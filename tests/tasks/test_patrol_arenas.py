@@ -529,3 +529,23 @@ def test_teach_patrol_checks_units_and_explore_min_against_what_the_fit_needs():
 
     p = place_model(24).params
     assert (p.sfa_inputs, p.min_fit_ticks, p.washout, p.downsample) == (408, 100, 0, 1)
+
+
+def test_on_a_wall_tour_the_robot_is_led_along_the_wall_it_follows():
+    from hippo.tasks.explore import arena_tour
+    from hippo.tasks.patrol_sets import TOUR_REACH, tour_of_side
+
+    ring = _wide_ring()
+    right, left = arena_tour(ring, -1), arena_tour(ring, 1)
+    # from the start both followers go round clockwise: the right one along the block, the
+    # left one along the outer wall, a corridor's width (45 cm) less two wall gaps apart
+    assert right.winding == left.winding == -1
+    mid = [(22.0, 75.0), (100.0, 22.0), (178.0, 75.0)]      # mid-corridor: near both tours
+    assert all(t.distance(*c) <= TOUR_REACH for t in (right, left) for c in mid)
+    assert tour_of_side(ring, mid, "tour", right, 1) is left
+    assert tour_of_side(ring, mid, "tour", right, -1) is right    # its own wall's already
+    assert tour_of_side(ring, mid, "shortest", right, 1) is right  # only tours are swapped
+    # a checkpoint by the block, out of the outer tour's reach: the route stays
+    by_block = [*mid[:2], (160.0, 75.0)]
+    assert left.distance(160.0, 75.0) > TOUR_REACH >= right.distance(160.0, 75.0)
+    assert tour_of_side(ring, by_block, "tour", right, 1) is right
