@@ -27,7 +27,8 @@ from hippo.snapshot import load_snapshot, save_snapshot
 
 __all__ = ["Checkpoints"]
 
-_NAME = re.compile(r"^ckpt-(\d{6})$")
+# six digits or more: the millionth checkpoint is ckpt-1000000 (%06d pads, never cuts)
+_NAME = re.compile(r"^ckpt-(\d{6,})$")
 
 
 class Checkpoints:

@@ -2,8 +2,9 @@
 
 Run: ``nice -n 10 python tools/mutation.py [MODULE ...] [--sample N --seed S] [--survivors]
 [--json FILE]`` (default modules: ``NEURAL_MODULES``; the task metrics' modules,
-``hippo/tasks/{routes,passes,patrol_report,deployment}.py``, and the closed loop's
-``hippo/{motor,soft_recognition,waits}.py`` have their tests here too).
+``hippo/tasks/{routes,passes,patrol_report,deployment}.py``, the closed loop's
+``hippo/{motor,soft_recognition,waits}.py``, and the sweep's and checkpoints'
+``hippo/{sweep,sweep_cells,resume}.py`` have their tests here too).
 Needs mutmut: ``pip install -e ".[mutation]"``.
 
 The tool builds a scratch copy of the project in ``--out`` (``hippo/``, ``tests/``, and
@@ -153,6 +154,14 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     # the injected sensor faults (dead sensors, extra noise), offline and tick by tick
     "hippo/sim/faults.py": ["tests/sim/test_faults_rules.py", "tests/sim/test_faults.py",
                             "tests/perception/test_sensor_guard.py"],
+    # the sweep on a synchronous stand-in client (the table, resumption, retries), and its
+    # cells (grid, ids, command lines, the record's checks); not tests/test_sweep.py, whose
+    # in-process LocalCluster hangs in mutmut's forked workers (every mutant reaching it that
+    # no faster test kills would count as a timeout, i.e. killed)
+    "hippo/sweep.py": ["tests/test_sweep_rules.py"],
+    "hippo/sweep_cells.py": ["tests/test_sweep_cells_rules.py"],
+    # resumable checkpoints: the pointer, numbering, pruning of half-written folders
+    "hippo/resume.py": ["tests/test_resume_rules.py", "tests/test_resume.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -622,6 +631,14 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      r'check_int\("start", start, (lo=None)?\)\)',
      "equivalent: SensorFaults.__post_init__ checks start again with lo=0, the same name and "
      "message"),
+    ("hippo/sweep_cells.py", r"if names else \[\(\)\]$", r"if \(names\) or True else \[\(\)\]$",
+     "equivalent: itertools.product() of no iterables yields the one empty combination, [()]"),
+    ("hippo/sweep.py", r"stacklevel=[23]", r"stacklevel=[34]|^(?!.*stacklevel)",
+     "not measurable with mutmut: its trampolines add frames between the caller and the "
+     "warning (tested outside mutmut: tests/test_sweep_rules.py)"),
+    ("hippo/sweep.py", r'rec = _record\(c, "(ok|failed)", 0,',
+     r'_record\(c, "(ok|failed)", (1|None),',
+     "equivalent: a placeholder; the next line sets the attempts from the scheduler's count"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the
