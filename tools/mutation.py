@@ -162,6 +162,16 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/sweep_cells.py": ["tests/test_sweep_cells_rules.py"],
     # resumable checkpoints: the pointer, numbering, pruning of half-written folders
     "hippo/resume.py": ["tests/test_resume_rules.py", "tests/test_resume.py"],
+    # the low-level controllers: wall following, obstacle avoidance, go-to-heading
+    "hippo/sim/controllers.py": ["tests/sim/test_controllers_rules.py", "tests/sim/test_world.py",
+                                 "tests/test_motor.py", "tests/test_agent.py"],
+    # the robot: sensor models, wheel limits and the differential drive's kinematics
+    "hippo/sim/robot.py": ["tests/sim/test_robot_rules.py", "tests/sim/test_world.py",
+                           "tests/test_agent_rules.py", "tests/test_motor.py"],
+    # the arena builder: walls, zones, regions, locations, landmarks, the start pose's checks
+    "hippo/sim/builder.py": ["tests/sim/test_builder_rules.py", "tests/sim/test_world.py",
+                             "tests/sim/test_flats.py", "tests/sim/test_geodesic.py",
+                             "tests/tasks/test_task_inputs.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -639,6 +649,30 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
     ("hippo/sweep.py", r'rec = _record\(c, "(ok|failed)", 0,',
      r'_record\(c, "(ok|failed)", (1|None),',
      "equivalent: a placeholder; the next line sets the attempts from the scheduler's count"),
+    ("hippo/sim/controllers.py", r"if side > 0 else self\.(diag|perp)_right",
+     r"if side >= 0 else self\.(diag|perp)_right",
+     "equivalent: a side is +1 or -1 (WallFollower refuses any other and only flips its sign), "
+     "never 0"),
+    ("hippo/sim/controllers.py", r"ir = obs.ir.tolist\(\) if isinstance\(obs.ir, np.ndarray\)",
+     r"and False else list\(obs.ir\)",
+     "equivalent: list() of the float64 readings gives numpy floats, whose sums, products and "
+     "comparisons are Python's float64 ones (tolist only saves time)"),
+    ("hippo/sim/controllers.py", r"k \* self._turn \* p.turn_gain", r"k / self._turn \* p",
+     "equivalent: the turn is +1 or -1, so dividing by it is multiplying by it"),
+    ("hippo/sim/controllers.py", r"if diag < 1.6 \* p.target:", r"if diag <= 1.6 \* p.target:",
+     "equivalent: on the edge the correction, gain * (1.6 target - diag), is 0"),
+    ("hippo/sim/builder.py", r"if not \(x0 < x - 3.7 and x \+ 3.7 < x1 and y0 < y - 3.7 and y",
+     r"<= |x0 < x \+ 3.7|x - 3.7 < x1|y0 < y \+ 3.7|y - 3.7 < y1",
+     "equivalent: build() first refuses a start closer than 3.7 + 0.5 cm to any wall, a box's "
+     "sides included, and these conditions differ only for a start within 3.7 cm of a side"),
+    ("hippo/sim/builder.py", r"locations=np.array\(self._locations, float\)",
+     r"np.array\(self._locations, (None)?\)",
+     "equivalent: the locations are pairs of floats (_point makes them), so numpy's default "
+     "dtype is float64, and an empty list is float64 too"),
+    ("hippo/sim/builder.py", r"reshape\(-1, 2\)", r"reshape\(-2, 2\)",
+     "equivalent: numpy takes any negative size as the unknown one (checked, numpy 2.4)"),
+    ("hippo/sim/builder.py", r"pts\[:1\] if closed", r"pts\[:2\] if closed",
+     "equivalent: zip stops at the n points; the extra second point is never paired"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the
