@@ -192,12 +192,12 @@ def run_sweep(cells: Sequence[Cell], out: str | os.PathLike, *, workers: int | N
         raise ImportError("hippo sweep needs Dask distributed: pip install 'hippo[sweep]'") \
             from None
     out = check_path("out", out)
-    (out / "cells").mkdir(parents=True, exist_ok=True)
     if int(retries) < 0:
         raise ValueError(f"retries must be >= 0, got {retries}")
     ids = [c.id for c in cells]
     if len(set(ids)) != len(ids):
         raise ValueError("the grid lists the same cell twice")
+    (out / "cells").mkdir(parents=True, exist_ok=True)   # only once the sweep is accepted
     result = SweepResult(out)
     records: dict[str, dict[str, Any]] = {}
     todo = []

@@ -355,6 +355,7 @@ def test_refusals_word_for_word(tmp_path, sync):
         run_sweep(grid("demo", [0, 0]), tmp_path, client=sync, task=task)
     assert str(exc.value) == "the grid lists the same cell twice"
     assert sync.submitted == []
+    assert not (tmp_path / "cells").exists()   # a refused sweep leaves nothing on disk
     res = run_sweep(grid("demo", [0]), tmp_path, client=sync, task=task, retries=0,
                     figure=False)
     assert res.ok and sync.submitted[0]["retries"] == 0

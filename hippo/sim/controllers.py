@@ -134,6 +134,13 @@ class AvoidanceParams:
     stop: float = 1.5    #: cm beyond the sensors' minimum range: boxed in, or no forward motion
     turn_gain: float = 1.6
 
+    def __post_init__(self) -> None:
+        check_fields(self)
+        if not (self.slow > 0 and self.stop >= 0 and self.turn_gain >= 0):
+            raise ValueError(f"AvoidanceParams needs slow > 0, stop >= 0 and turn_gain >= 0, got "
+                             f"slow={self.slow!r}, stop={self.stop!r}, "
+                             f"turn_gain={self.turn_gain!r}")
+
 
 class ObstacleAvoidance:
     """Steer away from near obstacles; stop when boxed in (all front rays closer than ``stop``).
@@ -148,6 +155,11 @@ class ObstacleAvoidance:
                  speed: float | None = None) -> None:
         self.params = params or AvoidanceParams()
         self.geom = _SensorGeometry(sensors, robot or RobotParams())
+        stop_at = self.geom.model.range_min + self.params.stop
+        if not self.params.slow > stop_at:  # k's denominator: 0 divides, below 0 turns it off
+            raise ValueError(f"AvoidanceParams.slow ({self.params.slow:g} cm) must exceed the "
+                             f"sensors' minimum range + stop ({stop_at:g} cm): closer obstacles "
+                             f"all read the same")
         self.speed = speed if speed is not None else self.geom.robot.speed_max
         self._turn = 0.0
         #: the forward-facing rays (within ±100°) that :meth:`boxed_in` reads

@@ -424,8 +424,19 @@ def test_avoidance_weight_on_its_edges():
     assert avoid().modulate(3.0, 0.9, seen(r7=4.0)) == pytest.approx((0.0, -1.6), abs=1e-15)
     # exactly range_min + stop = 5.5: k = 1
     assert avoid().modulate(3.0, 0.9, seen(r7=5.5)) == pytest.approx((0.0, -1.6), abs=1e-15)
-    # slow below stop_at (a weight below 0 clipped to 0): slow 5, front 4.5: k = 0.5 / -0.5
-    assert avoid(AvoidanceParams(slow=5.0)).modulate(3.0, 0.9, seen(r7=4.5)) == (3.0, 0.9)
+    # slow at or below stop_at (k's denominator 0 or negative) is refused when built: ir8's
+    # minimum range 4 cm + stop 1.5 cm = 5.5 cm
+    for slow in (5.5, 5.0):
+        with pytest.raises(ValueError, match=re.escape(
+                f"AvoidanceParams.slow ({slow:g} cm) must exceed the sensors' minimum range + "
+                "stop (5.5 cm): closer obstacles all read the same")):
+            avoid(AvoidanceParams(slow=slow))
+    assert avoid(AvoidanceParams(slow=5.5 + 1 / 32)).params.slow == 5.53125
+    for bad in ({"slow": 0.0}, {"stop": -0.5}, {"turn_gain": -1.0}):
+        with pytest.raises(ValueError, match="AvoidanceParams needs slow > 0, stop >= 0"):
+            AvoidanceParams(**bad)
+    with pytest.raises(ValueError, match="AvoidanceParams"):
+        AvoidanceParams(slow=float("nan"))
 
 
 def test_avoidance_params_are_used():
