@@ -172,6 +172,22 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/sim/builder.py": ["tests/sim/test_builder_rules.py", "tests/sim/test_world.py",
                              "tests/sim/test_flats.py", "tests/sim/test_geodesic.py",
                              "tests/tasks/test_task_inputs.py"],
+    # the tasks' exploration (the wall follower's tour, the wall to follow, the wall tour)
+    "hippo/tasks/explore.py": ["tests/tasks/test_explore_rules.py",
+                               "tests/tasks/test_patrol_arenas.py",
+                               "tests/tasks/test_patrol_sets.py"],
+    # teach_patrol's checks before any work and its recipe on stand-ins (the lesson itself
+    # is a closed-loop scenario)
+    "hippo/tasks/lesson.py": ["tests/tasks/test_lesson_rules.py",
+                              "tests/tasks/test_patrol_arenas.py"],
+    # the experimenter's reward sound and the patrol lesson's order
+    "hippo/tasks/teaching.py": ["tests/tasks/test_teaching_rules.py",
+                                "tests/tasks/test_session.py"],
+    # the closed loop run tick by tick, the teacher's lead, block and put
+    "hippo/tasks/session.py": ["tests/tasks/test_session_rules.py",
+                               "tests/tasks/test_session.py"],
+    # the per-tick log, its columns and its files
+    "hippo/tasks/log.py": ["tests/tasks/test_log_rules.py", "tests/tasks/test_session.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -673,6 +689,40 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      "equivalent: numpy takes any negative size as the unknown one (checked, numpy 2.4)"),
     ("hippo/sim/builder.py", r"pts\[:1\] if closed", r"pts\[:2\] if closed",
      "equivalent: zip stops at the n points; the extra second point is never paired"),
+    ("hippo/tasks/session.py", r'getattr\(agent.places, "kind", ""\) == "ground-truth"',
+     r'"kind", (None|"XXXX")\)', "equivalent: the default is only compared with "
+     "'ground-truth', which neither '' nor None nor 'XXXX' is"),
+    ("hippo/tasks/session.py", r"LeashWarning, stacklevel=2\)", r"LeashWarning, \)$",
+     "not measurable with mutmut: its trampoline adds a frame between the caller and the "
+     "warning (stacklevel 1 and 2 both name the mutated module)"),
+    ("hippo/tasks/teaching.py", r"chain = order\[:order.index\(first, 1\)\]",
+     r"order.index\(first, 2\)", "equivalent: order[1] is the chain's second checkpoint, "
+     "never its first (a patrol has 2 to 4 distinct checkpoints), so the search from 1 and "
+     "from 2 finds the same first's return"),
+    ("hippo/tasks/lesson.py", r"need, why = \(p.min_fit_ticks \+ p.washout - 1\)",
+     r"\(p.min_fit_ticks - p.washout - 1\)", "equivalent: the learned place cells' model "
+     "(place_model) has washout 0, so + and - washout need the same ticks"),
+    ("hippo/tasks/lesson.py", r"PlannerParams\(w=0.9, noise=0.0, exploration_threshold=0.05\)",
+     r"PlannerParams\(w=0.9, noise=0.0, \)", "equivalent: 0.05 is PlannerParams' default "
+     "exploration_threshold"),
+    ("hippo/tasks/explore.py", r"if pause_rate > 0 and rng.random\(\) < pause_rate:",
+     r"if pause_rate >= 0 and", "equivalent: with no pauses the draw, random() < 0, is never "
+     "true, and the pause stream is drawn from nowhere else"),
+    ("hippo/tasks/explore.py", r'getattr\(agent.places, "kind", ""\) == "ground-truth"',
+     r'"kind", (None|"XXXX")\)', "equivalent: the default is only compared with "
+     "'ground-truth', which neither '' nor None nor 'XXXX' is"),
+    ("hippo/tasks/explore.py", r"back\[side\] = -steps\[steps < 0\].sum\(\) / moved",
+     r"steps\[steps <= 0\]|else 2.0$", "equivalent: a step of 0 adds nothing backwards; a "
+     "follower that did not move has a share of 1 or 2, both above OUTER_MAX_BACK (0.1)"),
+    ("hippo/tasks/explore.py", r"return Route\(pts, closed=True\)", r"return Route\(pts, \)",
+     "equivalent: closed=True is Route's default"),
+    ("hippo/tasks/explore.py", r"^xy = pose\[:, :2\]$", r"^xy = pose\[:, :3\]$",
+     "equivalent: np.hypot takes the third column as its out array, so the distances are the "
+     "same (checked), and only columns 0 and 1 are interpolated"),
+    ("hippo/tasks/explore.py", r"i0 = min\(round\(settle_s / world.dt\), len\(xy\) - 1\)",
+     r"len\(xy\) - 2\)", "equivalent: settled at the last pose or the one before, a return "
+     "needs > 100 cm of path after it, which one step (ending within 4 cm of where it "
+     "started) cannot have: None either way"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the
