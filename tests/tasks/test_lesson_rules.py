@@ -117,7 +117,15 @@ class _Recorder:
             rec.calls["stops"] = (a, kw)
             return taught or []
 
+        # the route the robot is led along: the followed wall's tour (a route of its own)
+        self.led = SimpleNamespace(name="the followed wall's tour")
+
+        def tour_of_side(*a: Any) -> Any:
+            rec.calls["tour_of_side"] = a
+            return rec.led
+
         for name, f in (("checked_route", checked_route), ("wall_side", wall_side),
+                        ("tour_of_side", tour_of_side),
                         ("explore", explore), ("make_places", make_places), ("Agent", agent),
                         ("Session", session), ("PatrolCourse", Course), ("stops", stops)):
             monkeypatch.setattr(L, name, f)
@@ -167,8 +175,10 @@ def test_the_recipe_hands_each_part_what_it_needs(monkeypatch):
     assert w is world and agent is lesson.agent and slog is log
     assert set(kw) == {"obs", "phase"} and kw["phase"] == PatrolPhase.LEASH
     assert kw["obs"] is rec.tour[-1]                  # the exploration's last observation
+    # led along the tour of the wall wall_side gave (after the side is known)
+    assert rec.calls["tour_of_side"] == ("patrol-course", cps, "tour", rec.loop, 1)
     (s, loop, cps2, names2), kw = rec.calls["course"]
-    assert s is lesson.session and loop is rec.loop and cps2 == cps and names2 == names
+    assert s is lesson.session and loop is rec.led and cps2 == cps and names2 == names
     assert kw == {"tour": True}
     assert rec.calls["teach"] == [24.0, 19.1, 11.0]
     assert all(type(v) is float for v in rec.calls["teach"])
