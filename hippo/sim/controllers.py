@@ -89,7 +89,7 @@ class WallFollower:
         self.params = params or WallFollowerParams()
         self.geom = _SensorGeometry(sensors, robot or RobotParams())
         self.rng = np.random.default_rng(rng)
-        if side not in (-1, 1):
+        if isinstance(side, bool) or not isinstance(side, int | np.integer) or side not in (-1, 1):
             raise ValueError("side must be +1 (left) or -1 (right)")
         self.side = side
         self.speed = self.params.speed_max

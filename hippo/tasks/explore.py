@@ -14,6 +14,7 @@
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -225,6 +226,11 @@ def wall_tour(arena: Arena, side: int = -1, *, seed: int = 0, max_s: float = 150
     stays on what they saw. In a tree of rooms (``two-rooms``) the shortest paths between
     checkpoints run out and back through the same doorway and across rooms the exploration
     never crossed; the tour is one loop round every wall, each doorway once each way."""
+    for name, v, lo in (("max_s", max_s, ">"), ("settle_s", settle_s, ">="),
+                        ("spacing", spacing, ">")):
+        if not (isinstance(v, int | float | np.integer | np.floating) and not isinstance(v, bool)
+                and math.isfinite(v) and (v > 0 or (lo == ">=" and v == 0))):
+            raise ValueError(f"wall_tour's {name} must be a finite number {lo} 0, got {v!r}")
     world = World(arena, seed=seed)
     tour = explore(world, round(max_s / world.dt), 0.0, seed, pause_rate=0.0, side=side,
                    desc="wall tour")
@@ -247,7 +253,8 @@ def arena_tour(arena: str | Arena, side: int = -1) -> Route | None:
     """:func:`wall_tour` of ``arena`` (a built-in arena's name, or an :class:`Arena` of one's
     own) along wall ``side`` (-1 right, +1 left; cached: the tour is the arena's, not a
     run's)."""
-    if side not in (-1, 1):
+    # True == 1 and 1.0 == 1, but neither is a side
+    if isinstance(side, bool) or not isinstance(side, int | np.integer) or side not in (-1, 1):
         raise ValueError(f"side must be -1 (right) or +1 (left), got {side!r}")
     if isinstance(arena, str):
         return _arena_tour(arena, side)

@@ -157,9 +157,10 @@ def test_wall_follower_set_up():
     g = WallFollower(STEADY, sensors=M, robot=robot, rng=7, side=1)
     assert (g.side, g.speed, g.geom.model, g.geom.robot) == (1, 1.0, M, robot)
     assert g.rng.random() == np.random.default_rng(7).random()
-    for side in (0, 2, -2):
+    for side in (0, 2, -2, True, 1.0):   # True == 1 and 1.0 == 1, but neither is a side
         with refused("side must be +1 (left) or -1 (right)"):
             WallFollower(side=side)
+    assert WallFollower(side=np.int64(-1)).side == -1
 
 
 class Script:

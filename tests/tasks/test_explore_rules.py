@@ -405,7 +405,7 @@ def test_wall_tour_runs_1500_s_settles_30_s_by_default(monkeypatch):
 
 
 def test_arena_tour_refusals_word_for_word():
-    for side in (0, 2, -2, "1"):
+    for side in (0, 2, -2, "1", True, 1.0, -1.0):
         with pytest.raises(ValueError) as e:
             ex.arena_tour("goal-arena", side)                  # type: ignore[arg-type]
         assert str(e.value) == f"side must be -1 (right) or +1 (left), got {side!r}"
@@ -493,3 +493,12 @@ def test_the_progress_bars_name_their_work_and_count_every_tick(monkeypatch):
     with pytest.raises(ValueError):
         ex.make_places("learned", _box(), np.zeros((5, 8)), 4, 0)      # too short to fit
     assert shown == ["fitting place cells"]
+
+
+def test_wall_tour_refuses_times_and_spacing_that_are_no_positive_numbers():
+    for name, bad in (("max_s", 0.0), ("settle_s", -30.0), ("spacing", float("nan")),
+                      ("max_s", True), ("spacing", "3"), ("settle_s", -1e-9)):
+        lo = ">=" if name == "settle_s" else ">"       # the tour may start at once
+        with pytest.raises(ValueError) as e:
+            ex.wall_tour(None, **{name: bad})                  # type: ignore[arg-type]
+        assert str(e.value) == f"wall_tour's {name} must be a finite number {lo} 0, got {bad!r}"
