@@ -122,7 +122,10 @@ class ArenaBuilder:
 
     def grid_locations(self, nx: int, ny: int, rect: Rect | None = None) -> ArenaBuilder:
         """An ``nx`` × ``ny`` grid of reference locations over ``rect`` (cell centres)."""
-        if int(nx) != nx or int(ny) != ny or nx < 1 or ny < 1:
+        whole = all(isinstance(v, int | float | np.integer | np.floating)
+                    and not isinstance(v, bool) and math.isfinite(v) and v == int(v) and v >= 1
+                    for v in (nx, ny))   # (inf overflowed int(), NaN failed in it, True was 1)
+        if not whole:
             raise ValueError(f"a grid of locations needs nx, ny >= 1, got {nx} x {ny}")
         nx, ny = int(nx), int(ny)
         x0, y0, x1, y1 = (self._rect("grid rectangle", rect) if rect is not None

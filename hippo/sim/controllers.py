@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hippo._checks import check_fields, check_range
+from hippo._checks import check_fields, check_positive, check_range
 from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
 from hippo.types import Observation, wrap_angle
 
@@ -160,7 +160,8 @@ class ObstacleAvoidance:
             raise ValueError(f"AvoidanceParams.slow ({self.params.slow:g} cm) must exceed the "
                              f"sensors' minimum range + stop ({stop_at:g} cm): closer obstacles "
                              f"all read the same")
-        self.speed = speed if speed is not None else self.geom.robot.speed_max
+        self.speed = (check_positive("speed", speed, allow_zero=True) if speed is not None
+                      else self.geom.robot.speed_max)
         self._turn = 0.0
         #: the forward-facing rays (within ±100°) that :meth:`boxed_in` reads
         self._forward = np.flatnonzero(np.abs(self.geom.angles) <= np.deg2rad(100)).tolist()
@@ -229,8 +230,9 @@ class GoToHeading:
                  avoidance: AvoidanceParams | None = None) -> None:
         self.avoid = ObstacleAvoidance(avoidance, sensors=sensors, robot=robot)
         self.robot = self.avoid.geom.robot
-        self.speed = speed if speed is not None else self.robot.speed_max
-        self.gain = gain
+        self.speed = (check_positive("speed", speed, allow_zero=True) if speed is not None
+                      else self.robot.speed_max)
+        self.gain = check_positive("gain", gain, allow_zero=True)
 
     def act(self, obs: Observation, heading: float, target: float) -> tuple[float, float]:
         """Wheel speeds steering from ``heading`` (an estimate) toward ``target`` (radians)."""
@@ -261,7 +263,7 @@ class WallGuidedHeading:
         fparams = WallFollowerParams(**{**base.__dict__, "rho": 0.0})
         self.follower = WallFollower(fparams, sensors=sensors, robot=robot, rng=rng, side=side)
         self.steer = GoToHeading(sensors=sensors, robot=robot, speed=speed)
-        self.tolerance = tolerance
+        self.tolerance = check_positive("tolerance", tolerance)
 
     def act(self, obs: Observation, heading: float, target: float) -> tuple[float, float]:
         g = self.follower.geom

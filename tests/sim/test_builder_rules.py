@@ -318,3 +318,14 @@ def test_start_inside_a_pillar_is_refused():
         with pytest.raises(ValueError, match="lies inside box"):
             (ArenaBuilder("b", 100, 80).box((10, 10, 90, 70)).wall((40, 40), end)
              .start(60, 30).build())
+
+
+
+def test_a_grid_needs_whole_finite_counts():
+    for nx, ny in ((float("inf"), 1), (float("nan"), 2), (True, 2), (2, 1.5), (0, 3)):
+        with pytest.raises(ValueError) as e:
+            ArenaBuilder("g", 100, 100).grid_locations(nx, ny)
+        assert str(e.value) == f"a grid of locations needs nx, ny >= 1, got {nx} x {ny}"
+    # 2.0 x 1: two cell centres at x = 25 and 75, y = 50 (a 100 x 100 arena halved)
+    a = ArenaBuilder("g", 100, 100).outer_walls().grid_locations(2.0, 1).start(50, 20).build()
+    np.testing.assert_array_equal(a.locations, [[25.0, 50.0], [75.0, 50.0]])

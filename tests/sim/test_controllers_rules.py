@@ -565,3 +565,18 @@ def test_wall_guided_wall_range_edge_and_no_switching():
 
 def test_stop_stands_still():
     assert Stop().act(seen(r0=4.0)) == (0.0, 0.0)
+
+
+def test_speeds_gains_and_tolerances_are_finite_numbers():
+    for make, name, bad in ((lambda v: GoToHeading(speed=v), "speed", float("nan")),
+                            (lambda v: GoToHeading(gain=v), "gain", -1.0),
+                            (lambda v: ObstacleAvoidance(speed=v), "speed", float("inf")),
+                            (lambda v: WallGuidedHeading(tolerance=v), "tolerance", 0.0),
+                            (lambda v: WallGuidedHeading(speed=v), "speed", -0.5)):
+        rel = "> 0" if name == "tolerance" else ">= 0"
+        with refused(f"{name} must be finite and {rel}, got {bad!r}"):
+            make(bad)
+    # on their edges: a robot told to stand (speed 0) with no steering gain gives v = 0 and
+    # omega = 0 (every ray clear, so no avoidance), both wheels 0; an int taken as its float
+    assert GoToHeading(sensors=M, speed=0, gain=0).act(seen(), 0.0, 1.0) == (0.0, 0.0)
+    assert WallGuidedHeading(tolerance=1).tolerance == 1.0
