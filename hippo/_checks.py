@@ -150,6 +150,13 @@ def check_real(name: str, value: Any) -> float:
     return v
 
 
+def is_wall_side(value: Any) -> bool:
+    """Is ``value`` a wall side, the integer -1 (right) or +1 (left)? (``True`` and ``1.0``
+    equal 1 but are no side.)"""
+    return isinstance(value, int | np.integer) and not isinstance(value, bool | np.bool_) \
+        and value in (-1, 1)
+
+
 def check_array(name: str, value: Any, *, shape: tuple[int | None, ...] | None = None,
                 dtype: str = "float", finite: bool = True,
                 max_abs: float | None = None) -> np.ndarray:

@@ -88,3 +88,13 @@ def test_check_finite_takes_a_float64_array_as_it_is_and_converts_the_rest():
         bad[1], bad[3] = math.nan, math.inf
         with pytest.raises(ValueError, match="x contains 2 non-finite"):
             check_finite("x", bad)
+
+
+def test_a_wall_side_is_the_integer_minus_one_or_plus_one():
+    from hippo._checks import is_wall_side
+
+    for side in (-1, 1, np.int64(-1), np.int8(1)):
+        assert is_wall_side(side)
+    # equal to 1 or -1, but no side: a bool, a float, a numpy bool; and every other integer
+    for other in (True, np.bool_(True), 1.0, -1.0, 0, 2, -2, "1", None):
+        assert not is_wall_side(other)

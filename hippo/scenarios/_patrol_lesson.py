@@ -49,9 +49,8 @@ from hippo.tasks.patrol import (
     PatrolCourse,
     PatrolPhase,
     check_patrol,
-    choose_route,
 )
-from hippo.tasks.patrol_sets import tour_of_side
+from hippo.tasks.patrol_sets import led_route
 
 
 def add_course_arguments(parser: argparse.ArgumentParser) -> None:
@@ -254,9 +253,8 @@ def teach_patrol(args: argparse.Namespace, seed: int, *, units: int) -> Lesson:
     if loaded is not None:
         s = Session(loaded["world"], loaded["agent"], Log(n_drives=len(checkpoints)),
                     obs=loaded["obs"], phase=PatrolPhase.CHECKPOINTS)
-        kind, route = choose_route(args.arena, checkpoints, meta_route(loaded["meta"]))
-        route = tour_of_side(args.arena, checkpoints, kind, route,   # as teach_patrol led it
-                             s.agent.params.motor.wall_side)
+        kind, route = led_route(args.arena, checkpoints, meta_route(loaded["meta"]),
+                                s.agent.params.motor.wall_side)
         course = PatrolCourse(s, route, checkpoints, names)
         course.loop = loaded["loop"]
         meta = loaded["meta"]

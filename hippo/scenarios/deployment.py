@@ -50,7 +50,7 @@ from hippo.tasks.deployment import (
     tally_failures,
 )
 from hippo.tasks.patrol import PatrolCourse, PatrolPhase
-from hippo.tasks.patrol_sets import choose_route, tour_of_side
+from hippo.tasks.patrol_sets import led_route
 
 Phase = PatrolPhase
 
@@ -128,10 +128,8 @@ def run(args: argparse.Namespace) -> dict:
         s = Session(state["world"], state["agent"], Log(n_drives=len(args.checkpoints)),
                     obs=state["obs"])
         s.world.detach(s.teacher)
-        kind, loop = choose_route(args.arena, args.checkpoints, getattr(args, "route", "auto"))
-        # the route the lesson was given: a tour along the wall the robot follows
-        loop = tour_of_side(args.arena, args.checkpoints, kind, loop,
-                            s.agent.params.motor.wall_side)
+        _, loop = led_route(args.arena, args.checkpoints, getattr(args, "route", "auto"),
+                            s.agent.params.motor.wall_side)   # the route the lesson was given
         course = PatrolCourse(s, loop, args.checkpoints, [f"checkpoint-{k}" for k in
                                                           range(1, len(args.checkpoints) + 1)])
         course.loop = state["loop"]

@@ -13,7 +13,7 @@ from collections.abc import Collection, Sequence
 
 import numpy as np
 
-from hippo._checks import check_finite, check_int
+from hippo._checks import check_finite, check_int, check_real
 from hippo.sim.arena import Arena, Point, Rect, Region, Zone
 
 __all__ = ["ArenaBuilder"]
@@ -122,9 +122,10 @@ class ArenaBuilder:
 
     def grid_locations(self, nx: int, ny: int, rect: Rect | None = None) -> ArenaBuilder:
         """An ``nx`` × ``ny`` grid of reference locations over ``rect`` (cell centres)."""
-        whole = all(isinstance(v, int | float | np.integer | np.floating)
-                    and not isinstance(v, bool) and math.isfinite(v) and v == int(v) and v >= 1
-                    for v in (nx, ny))   # (inf overflowed int(), NaN failed in it, True was 1)
+        try:   # (inf overflowed int(), NaN failed inside it, True was taken as 1)
+            whole = all(check_real("n", v) == int(v) >= 1 for v in (nx, ny))
+        except ValueError:
+            whole = False
         if not whole:
             raise ValueError(f"a grid of locations needs nx, ny >= 1, got {nx} x {ny}")
         nx, ny = int(nx), int(ny)

@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from hippo._checks import check_real, is_wall_side
 from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
 from hippo.perception.relocate import SequenceRelocaliser
@@ -228,8 +229,11 @@ def wall_tour(arena: Arena, side: int = -1, *, seed: int = 0, max_s: float = 150
     never crossed; the tour is one loop round every wall, each doorway once each way."""
     for name, v, lo in (("max_s", max_s, ">"), ("settle_s", settle_s, ">="),
                         ("spacing", spacing, ">")):
-        if not (isinstance(v, int | float | np.integer | np.floating) and not isinstance(v, bool)
-                and math.isfinite(v) and (v > 0 or (lo == ">=" and v == 0))):
+        try:
+            x = check_real(name, v)
+        except ValueError:   # (a bool, a string, NaN or inf: named below in the same words)
+            x = math.nan
+        if not (x > 0 or (lo == ">=" and x == 0)):
             raise ValueError(f"wall_tour's {name} must be a finite number {lo} 0, got {v!r}")
     world = World(arena, seed=seed)
     tour = explore(world, round(max_s / world.dt), 0.0, seed, pause_rate=0.0, side=side,
@@ -253,8 +257,7 @@ def arena_tour(arena: str | Arena, side: int = -1) -> Route | None:
     """:func:`wall_tour` of ``arena`` (a built-in arena's name, or an :class:`Arena` of one's
     own) along wall ``side`` (-1 right, +1 left; cached: the tour is the arena's, not a
     run's)."""
-    # True == 1 and 1.0 == 1, but neither is a side
-    if isinstance(side, bool) or not isinstance(side, int | np.integer) or side not in (-1, 1):
+    if not is_wall_side(side):
         raise ValueError(f"side must be -1 (right) or +1 (left), got {side!r}")
     if isinstance(arena, str):
         return _arena_tour(arena, side)

@@ -28,8 +28,8 @@ from hippo.tasks.patrol_report import PASS_RADIUS
 from hippo.tasks.routes import Route, checkpoints_xy
 
 __all__ = ["ARENA_CHECKPOINTS", "HIREL_WAITS", "MAX_WAIT_S", "MIN_WAIT_S", "ROUTE_KINDS",
-           "TOUR_REACH", "check_patrol", "choose_route", "patrol_route", "random_patrol",
-           "tour_of_side"]
+           "TOUR_REACH", "check_patrol", "choose_route", "led_route", "patrol_route",
+           "random_patrol", "tour_of_side"]
 
 #: the arenas a patrol runs in, with their default checkpoints (cm): patrol-course's are its
 #: landmarks checkpoint-1..3 on the corridor loop; the others' were placed in distinct parts
@@ -143,6 +143,14 @@ def tour_of_side(arena: str | Arena, checkpoints: Sequence[Sequence[float]], kin
     if all(own.distance(*c) <= TOUR_REACH for c in checkpoints_xy(checkpoints)):
         return own
     return route
+
+
+def led_route(arena: str | Arena, checkpoints: Sequence[Sequence[float]], kind: str,
+              side: int) -> tuple[str, Route]:
+    """:func:`choose_route`, then :func:`tour_of_side` for a robot following wall ``side``:
+    the route a lesson led it along, found again for a saved lesson or a resumed run."""
+    what, route = choose_route(arena, checkpoints, kind)
+    return what, tour_of_side(arena, checkpoints, what, route, side)
 
 
 def _home_floor(arena: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

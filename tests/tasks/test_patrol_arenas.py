@@ -549,3 +549,8 @@ def test_on_a_wall_tour_the_robot_is_led_along_the_wall_it_follows():
     by_block = [*mid[:2], (160.0, 75.0)]
     assert left.distance(160.0, 75.0) > TOUR_REACH >= right.distance(160.0, 75.0)
     assert tour_of_side(ring, by_block, "tour", right, 1) is right
+    # a saved lesson's route found again: the right wall's tour, tried first, then the left's
+    from hippo.tasks.patrol_sets import choose_route, led_route
+    assert choose_route(ring, mid, "tour") == ("tour", right)
+    assert led_route(ring, mid, "tour", 1) == ("tour", left)
+    assert led_route(ring, mid, "tour", -1) == ("tour", right)
