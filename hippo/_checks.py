@@ -157,6 +157,16 @@ def is_wall_side(value: Any) -> bool:
         and value in (-1, 1)
 
 
+def check_wall_side(name: str, value: Any, *, none_ok: bool = False) -> int | None:
+    """``value`` as a wall side (:func:`is_wall_side`; None too with ``none_ok``), or a
+    ``ValueError`` naming ``name``: the one refusal of every place that takes a side."""
+    if (value is None and none_ok) or is_wall_side(value):
+        return None if value is None else int(value)
+    allowed = "-1 (right wall), +1 (left wall) or None" if none_ok else \
+        "-1 (right wall) or +1 (left wall)"
+    raise ValueError(f"{name} must be {allowed}, got {value!r}")
+
+
 def check_array(name: str, value: Any, *, shape: tuple[int | None, ...] | None = None,
                 dtype: str = "float", finite: bool = True,
                 max_abs: float | None = None) -> np.ndarray:

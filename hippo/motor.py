@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from hippo._checks import check_fields, check_positive
+from hippo._checks import check_fields, check_positive, check_wall_side
 from hippo.sim.controllers import (
     ObstacleAvoidance,
     WallFollower,
@@ -69,8 +69,7 @@ class MotorParams:
         check_positive("stall_time", self.stall_time, allow_zero=True)
         check_positive("unstick_time", self.unstick_time, allow_zero=True)
         check_positive("wall_tolerance", self.wall_tolerance)
-        if self.wall_side not in (-1, 1):
-            raise ValueError(f"wall_side must be -1 (right) or +1 (left), got {self.wall_side!r}")
+        check_wall_side("wall_side", self.wall_side)
         if not 0.0 <= self.explore_rho <= 1.0:
             raise ValueError(f"explore_rho must lie in [0, 1], got {self.explore_rho}")
 

@@ -18,7 +18,9 @@ Results
     the scenario's own output folder (figures, metrics.json; on a remote cluster it is written
     on the worker, so put ``OUT`` on a shared file system to keep them).
 ``OUT/results.csv`` (and ``results.parquet`` with ``parquet=True``)
-    one row per cell, parameters and flattened metrics (``a.b`` for nested ones) as columns.
+    one row per cell, parameters and flattened metrics (``a.b`` for nested ones) as columns;
+    a metric named like a column (a scenario's own ``seed``) is left out where it says what
+    the column says, and written as ``metrics.<name>`` beside it where it does not.
 ``OUT/summary.png``
     a chosen metric, mean ± sd over seeds, per parameter combination (removed, not left from an
     earlier sweep, when no figure is made: ``figure=False`` or a metric that is no number).
@@ -139,8 +141,21 @@ def _row(rec: Mapping[str, Any], names: Sequence[str]) -> dict[str, Any]:
     row = {"cell": rec["cell"], "scenario": rec["scenario"], "seed": rec["seed"]}
     row.update({n: rec["params"].get(n, "") for n in names})
     row.update({k: rec[k] for k in ("status", "attempts", "seconds", "worker", "error")})
-    row.update(_flatten(rec["metrics"]))
+    for k, v in _flatten(rec["metrics"]).items():
+        if k in row:   # a metric named like a column (a scenario's own "seed", "arena", ...)
+            if _same(row[k], v):
+                continue   # says what the column says
+            k = f"metrics.{k}"   # says something else: kept beside the column, not over it
+        row[k] = v
     return row
+
+
+def _same(column: Any, metric: Any) -> bool:
+    """Does a metric say what the column of the same name says (a parameter is the string
+    the command line took: ``"0.5"`` and 0.5 agree; True and 1 do not)?"""
+    if isinstance(column, bool) or isinstance(metric, bool):
+        return type(column) is type(metric) and column == metric
+    return column == metric or str(column) == str(metric)
 
 
 def _warn_oversubscribed(workers: int, cores: int) -> bool:

@@ -98,3 +98,26 @@ def test_a_wall_side_is_the_integer_minus_one_or_plus_one():
     # equal to 1 or -1, but no side: a bool, a float, a numpy bool; and every other integer
     for other in (True, np.bool_(True), 1.0, -1.0, 0, 2, -2, "1", None):
         assert not is_wall_side(other)
+
+
+def test_every_place_that_takes_a_wall_side_refuses_in_the_same_words():
+    from hippo._checks import check_wall_side
+    from hippo.motor import MotorParams
+
+    assert check_wall_side("side", np.int64(1)) == 1
+    assert type(check_wall_side("side", np.int64(1))) is int
+    assert check_wall_side("side", None, none_ok=True) is None
+    with pytest.raises(ValueError) as e:
+        check_wall_side("side", None)
+    assert str(e.value) == "side must be -1 (right wall) or +1 (left wall), got None"
+    with pytest.raises(ValueError) as e:
+        check_wall_side("side", 0.5, none_ok=True)
+    assert str(e.value) == "side must be -1 (right wall), +1 (left wall) or None, got 0.5"
+    # the motor's field (True and 1.0 are refused by type first, as every integer field's)
+    assert MotorParams(wall_side=np.int64(1)).wall_side == 1
+    for bad in (0, 2, -2):
+        with pytest.raises(ValueError) as e:
+            MotorParams(wall_side=bad)
+        assert str(e.value) == f"wall_side must be -1 (right wall) or +1 (left wall), got {bad}"
+    with pytest.raises(ValueError, match=r"^MotorParams.wall_side must be an integer, got True"):
+        MotorParams(wall_side=True)

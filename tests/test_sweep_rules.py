@@ -160,6 +160,26 @@ def test_a_record_and_its_row_field_by_field():
         ("error", ""), ("v", 1.0), ("m.k", 2)]
 
 
+def test_a_metric_named_like_a_column_never_overwrites_it():
+    # a scenario's metrics.json repeats its seed and arena; one that says something else (a
+    # metric "seconds", a parameter the scenario changed) is kept beside the column
+    cell = Cell("demo", 3, (("arena", "maze"), ("gain", "0.5"), ("flag", "1")), ())
+    res = {"metrics": {"seed": 3, "arena": "maze", "gain": 0.5, "flag": True,
+                       "seconds": 99.0, "status": "bad", "x": {"seed": 4}},
+           "seconds": 4.5, "worker": "w"}
+    row = sweep._row(sweep._record(cell, "ok", 1, res), ["arena", "gain", "flag"])
+    assert row["seed"] == 3 and row["arena"] == "maze" and row["gain"] == "0.5"
+    assert row["seconds"] == 4.5 and row["status"] == "ok"       # the run's own, kept
+    assert row["metrics.seconds"] == 99.0 and row["metrics.status"] == "bad"
+    assert row["metrics.flag"] is True          # True is not the string "1"
+    assert row["x.seed"] == 4                   # a nested name is no column
+    for same in ("metrics.seed", "metrics.arena", "metrics.gain"):
+        assert same not in row                  # said what the column says: left out
+    assert sweep._same(3, 3) and sweep._same("0.5", 0.5) and sweep._same(True, True)
+    assert not sweep._same("1", True) and not sweep._same(1, True)
+    assert not sweep._same("0.1", 0.10000001)
+
+
 def test_cell_text_leaves_missing_numbers_empty():
     assert sweep._cell_text(None) == "" and sweep._cell_text(math.nan) == ""
     assert sweep._cell_text(0.0) == 0.0 and sweep._cell_text("x") == "x"

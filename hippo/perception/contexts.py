@@ -32,7 +32,8 @@ value with at least ``min_count`` instances), the instances must differ
 
 Values are grouped greedily (most frequent first, each joining the first group it is not
 different from); every group becomes a leaf with a new context id. Values seen less than
-``min_count`` times, and values never seen, follow the largest group.
+``min_count`` times, and values never seen, follow the first group (the one the most
+frequent value founded; another group may grow larger as values join it).
 
 **Merging.** When the children of a node (all leaves) stop being different — the same tests
 with the laxer ``alpha_merge`` — they are merged back into one leaf, which keeps the id of

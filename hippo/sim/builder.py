@@ -15,6 +15,11 @@ import numpy as np
 
 from hippo._checks import check_finite, check_int, check_real
 from hippo.sim.arena import Arena, Point, Rect, Region, Zone
+from hippo.sim.robot import RobotParams
+
+#: the default robot's radius (the e-puck's), which a built arena's start must clear; a World
+#: checks the start again for its own robot
+START_CLEARANCE = RobotParams().radius
 
 __all__ = ["ArenaBuilder"]
 
@@ -168,7 +173,7 @@ class ArenaBuilder:
             start_pose=self._start or (self.width / 2, self.height / 2, 0.0),
             landmarks=dict(self._landmarks),
         )
-        if not arena.is_free(arena.start_pose[0], arena.start_pose[1], 3.7):
+        if not arena.is_free(arena.start_pose[0], arena.start_pose[1], START_CLEARANCE):
             raise ValueError(f"start pose {arena.start_pose} of {self.name!r} is not free")
         self._check_start_outside_boxes(arena.start_pose[0], arena.start_pose[1])
         return arena
@@ -179,7 +184,8 @@ class ArenaBuilder:
         and a patrol's checkpoints were drawn inside the pillar. A box round every wall (used
         as the outer walls) may hold the start."""
         for x0, y0, x1, y1 in self._boxes:
-            if not (x0 < x - 3.7 and x + 3.7 < x1 and y0 < y - 3.7 and y + 3.7 < y1):
+            r = START_CLEARANCE
+            if not (x0 < x - r and x + r < x1 and y0 < y - r and y + r < y1):
                 continue
             if any(not (x0 <= px <= x1 and y0 <= py <= y1) for w in self._walls for px, py in w):
                 given = "" if self._start is not None else " (the default start, the centre)"

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hippo._checks import check_fields, check_positive, check_range, is_wall_side
+from hippo._checks import check_fields, check_positive, check_range, check_wall_side
 from hippo.sim.robot import RobotParams, SensorModel, get_sensor_model
 from hippo.types import Observation, wrap_angle
 
@@ -89,9 +89,7 @@ class WallFollower:
         self.params = params or WallFollowerParams()
         self.geom = _SensorGeometry(sensors, robot or RobotParams())
         self.rng = np.random.default_rng(rng)
-        if not is_wall_side(side):
-            raise ValueError("side must be +1 (left) or -1 (right)")
-        self.side = side
+        self.side = check_wall_side("side", side)
         self.speed = self.params.speed_max
         self.switches = 0
 

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from hippo._checks import check_real, is_wall_side
+from hippo._checks import check_real, check_wall_side
 from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.prototypes import PlacePrototypes, PrototypeParams
 from hippo.perception.relocate import SequenceRelocaliser
@@ -257,8 +257,7 @@ def arena_tour(arena: str | Arena, side: int = -1) -> Route | None:
     """:func:`wall_tour` of ``arena`` (a built-in arena's name, or an :class:`Arena` of one's
     own) along wall ``side`` (-1 right, +1 left; cached: the tour is the arena's, not a
     run's)."""
-    if not is_wall_side(side):
-        raise ValueError(f"side must be -1 (right) or +1 (left), got {side!r}")
+    check_wall_side("side", side)
     if isinstance(arena, str):
         return _arena_tour(arena, side)
     if not isinstance(arena, Arena):

@@ -16,7 +16,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from hippo._checks import check_int, check_real
+from hippo._checks import check_int, check_real, check_wall_side
 from hippo.agent import Agent, AgentParams
 from hippo.cognitive_map import DriveParams, LocaliserParams, PlannerParams
 from hippo.perception.relocate import RelocaliserParams
@@ -77,8 +77,7 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
     checkpoints = [(float(x), float(y)) for x, y in checkpoints]
     if place_cells not in ("learned", "ground-truth"):
         raise ValueError(f"place_cells must be 'learned' or 'ground-truth', got {place_cells!r}")
-    if side is not None and check_int("side", side) not in (-1, 1):
-        raise ValueError(f"side must be -1 (right wall), +1 (left wall) or None, got {side!r}")
+    check_wall_side("side", side, none_ok=True)
     if not 0.1 <= check_real("explore_min", explore_min) <= 1e4:
         raise ValueError(f"explore_min must be 0.1 to 10,000 simulated minutes, got "
                          f"{explore_min!r}")

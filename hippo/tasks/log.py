@@ -42,11 +42,13 @@ def enum_names(enum: type[Enum]) -> np.ndarray:
 
 def event_arrays(events: Iterable[tuple[float, str, str]]) -> dict[str, np.ndarray]:
     """The world's event log ``[(t, kind, detail)]`` as ``event_t``, ``event_kind`` and
-    ``event_detail`` arrays (fixed-width strings: no pickle in ``.npz``)."""
+    ``event_detail`` arrays (fixed-width strings, no pickle in ``.npz``: at least 16 and 64
+    characters wide, wider where a kind or a detail is longer, never cut)."""
     ev = list(events)
+    kinds, details = [str(e[1]) for e in ev], [str(e[2]) for e in ev]
     return {"event_t": np.array([e[0] for e in ev], float),
-            "event_kind": np.array([e[1] for e in ev], dtype="<U16"),
-            "event_detail": np.array([e[2] for e in ev], dtype="<U64")}
+            "event_kind": np.array(kinds, dtype=f"<U{max([16, *map(len, kinds)])}"),
+            "event_detail": np.array(details, dtype=f"<U{max([64, *map(len, details)])}")}
 
 
 @dataclass

@@ -158,9 +158,10 @@ def test_wall_follower_set_up():
     assert (g.side, g.speed, g.geom.model, g.geom.robot) == (1, 1.0, M, robot)
     assert g.rng.random() == np.random.default_rng(7).random()
     for side in (0, 2, -2, True, 1.0):   # True == 1 and 1.0 == 1, but neither is a side
-        with refused("side must be +1 (left) or -1 (right)"):
+        with refused(f"side must be -1 (right wall) or +1 (left wall), got {side!r}"):
             WallFollower(side=side)
-    assert WallFollower(side=np.int64(-1)).side == -1
+    w = WallFollower(side=np.int64(-1))
+    assert w.side == -1 and type(w.side) is int
 
 
 class Script:

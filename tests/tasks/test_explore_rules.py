@@ -408,7 +408,7 @@ def test_arena_tour_refusals_word_for_word():
     for side in (0, 2, -2, "1", True, 1.0, -1.0):
         with pytest.raises(ValueError) as e:
             ex.arena_tour("goal-arena", side)                  # type: ignore[arg-type]
-        assert str(e.value) == f"side must be -1 (right) or +1 (left), got {side!r}"
+        assert str(e.value) == f"side must be -1 (right wall) or +1 (left wall), got {side!r}"
     with pytest.raises(TypeError) as e2:
         ex.arena_tour(3)                                       # type: ignore[arg-type]
     assert str(e2.value) == "arena must be an arena's name or an Arena, got int"

@@ -37,7 +37,8 @@ def test_the_refusals_word_for_word():
                                           "got 'gt'")
     assert _refused(side=0) == "side must be -1 (right wall), +1 (left wall) or None, got 0"
     assert _refused(side=2) == "side must be -1 (right wall), +1 (left wall) or None, got 2"
-    assert _refused(side=1.0) == "side must be an integer, got 1.0 (float)"
+    assert _refused(side=1.0) == "side must be -1 (right wall), +1 (left wall) or None, got 1.0"
+    assert _refused(side=True) == "side must be -1 (right wall), +1 (left wall) or None, got True"
     for v in (0.0999, 10000.001):
         assert _refused(explore_min=v) == (f"explore_min must be 0.1 to 10,000 simulated "
                                            f"minutes, got {v!r}")

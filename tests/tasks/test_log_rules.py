@@ -130,11 +130,18 @@ def test_save_writes_the_arrays_the_names_and_the_events(tmp_path):
 
 
 def test_event_arrays_types_and_widths():
-    ev = event_arrays(iter([(1, "k" * 20, "d" * 70)]))     # a generator is read once
+    ev = event_arrays(iter([(1, "k" * 3, "d" * 5)]))     # a generator is read once
     assert ev["event_t"].dtype == np.float64 and ev["event_t"][0] == 1.0
-    assert ev["event_kind"].dtype == np.dtype("<U16") and ev["event_kind"][0] == "k" * 16
-    assert ev["event_detail"].dtype == np.dtype("<U64") and ev["event_detail"][0] == "d" * 64
+    assert ev["event_kind"].dtype == np.dtype("<U16") and ev["event_kind"][0] == "kkk"
+    assert ev["event_detail"].dtype == np.dtype("<U64") and ev["event_detail"][0] == "d" * 5
     assert set(ev) == {"event_t", "event_kind", "event_detail"}
+    # longer ones widen the column (a kind of 17, a detail of 65 characters): nothing is cut
+    ev = event_arrays([(1, "k" * 16, "d" * 64), (2, "k" * 17, "d" * 65)])
+    assert ev["event_kind"].dtype == np.dtype("<U17") and list(ev["event_kind"]) == [
+        "k" * 16, "k" * 17]
+    assert ev["event_detail"].dtype == np.dtype("<U65") and ev["event_detail"][1] == "d" * 65
+    empty = event_arrays([])
+    assert empty["event_kind"].dtype == np.dtype("<U16") and empty["event_kind"].shape == (0,)
 
 
 def test_enum_names_by_value_and_the_refusal_word_for_word():
