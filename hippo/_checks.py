@@ -53,14 +53,22 @@ def check_finite(name: str, value: Any, *, keep_float32: bool = False) -> np.nda
     return arr
 
 
+def _number(name: str, value: Any) -> float:
+    """``float(value)``, or a ``ValueError`` naming ``name``: a bool or a string (``"5"``,
+    which ``float`` reads) is no number either."""
+    if isinstance(value, bool | np.bool_ | str | bytes):
+        raise ValueError(f"{name} must be a number, got {value!r}")
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+
+
 def check_positive(name: str, value: float, *, allow_zero: bool = False) -> float:
     """Raise ``ValueError`` unless ``value`` is a finite number > 0 (or >= 0)."""
     if type(value) is float and 0.0 < value < math.inf:  # the usual case (every tick)
         return value
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    v = _number(name, value)
     if not math.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
         rel = ">= 0" if allow_zero else "> 0"
         raise ValueError(f"{name} must be finite and {rel}, got {value!r}")
@@ -73,7 +81,7 @@ def check_range(name: str, value: float, lo: float, hi: float, *,
 
     ``closed`` says which ends belong to it: ``both``, ``left``, ``right`` or ``neither``.
     """
-    v = float(value)
+    v = _number(name, value)
     ok_lo = v >= lo if closed in ("both", "left") else v > lo
     ok_hi = v <= hi if closed in ("both", "right") else v < hi
     if not (math.isfinite(v) and ok_lo and ok_hi):
@@ -226,7 +234,7 @@ def _hint_ok(value: Any, hint: Any) -> bool:
             return False
         if len(args) == 2 and args[1] is Ellipsis:
             return all(_hint_ok(v, args[0]) for v in value)
-        return len(args) == len(value) and all(_hint_ok(v, h) for v, h in zip(args, value))
+        return len(args) == len(value) and all(_hint_ok(v, h) for h, v in zip(args, value))
     if isinstance(hint, type) and dataclasses.is_dataclass(hint):
         return isinstance(value, hint)
     return True

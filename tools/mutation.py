@@ -188,6 +188,19 @@ DEFAULT_TESTS: dict[str, list[str]] = {
                                "tests/tasks/test_session.py"],
     # the per-tick log, its columns and its files
     "hippo/tasks/log.py": ["tests/tasks/test_log_rules.py", "tests/tasks/test_session.py"],
+    # the shared input checks (every refusal's words) and the per-tick observation check
+    "hippo/_checks.py": ["tests/test_checks_rules.py", "tests/test_observation_check.py",
+                         "tests/test_types.py"],
+    # the run's named random streams
+    "hippo/seeds.py": ["tests/test_seeds_rules.py", "tests/test_types.py",
+                       "tests/test_agent_rules.py"],
+    # the patrol's course: the quiet point, the order, detours, the lesson's and patrol's laps
+    "hippo/tasks/patrol.py": ["tests/tasks/test_patrol_rules.py",
+                              "tests/tasks/test_task_inputs.py",
+                              "tests/tasks/test_patrol_arenas.py"],
+    # the Gymnasium tasks' reward rules
+    "hippo/envs/rewards.py": ["tests/envs/test_rewards_rules.py", "tests/envs/test_envs.py",
+                              "tests/envs/test_wrappers.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -723,6 +736,43 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      r"len\(xy\) - 2\)", "equivalent: settled at the last pose or the one before, a return "
      "needs > 100 cm of path after it, which one step (ending within 4 cm of where it "
      "started) cannot have: None either way"),
+    ("hippo/_checks.py", r"a = a.astype\(np.float64\)", r"a = a.astype\(None\)",
+     "equivalent: astype(None) is astype(float64)"),
+    ("hippo/_checks.py", r"hints = _HINTS.get\(cls\)", r"hints = _HINTS.get\(None\)",
+     "equivalent: a class's hints are then read again on every call instead of cached"),
+    ("hippo/_checks.py", r"if type\(value\) is float and 0.0 < value < math.inf:",
+     r"if type\(None\) is float", "equivalent: the fast path only; the general path returns "
+     "the same float for a float in (0, inf)"),
+    ("hippo/_checks.py", r"if \(type\(floor\) is not int and",
+     r"if \(type\(None\) is not int and", "equivalent: the fast path only; a plain int is "
+     "Integral and no bool, so the general test takes it too"),
+    ("hippo/cognitive_map/shortest_paths.py",
+     r'graph.cached\("planner.(state_pattern|state_order|transition_pattern)", build\)',
+     r'graph.cached\((None|"XXplanner|"PLANNER)', "equivalent: the key only names the cache "
+     "entry, and the mutated one is still unlike every other key of the graph's cache"),
+    ("hippo/cognitive_map/shortest_paths.py", r"ones = np.ones\(n, dtype=np.int8\)",
+     r"ones = np.ones\(n, (dtype=None)?\)", "equivalent: only the product's sparsity pattern "
+     "is read (row, col), not its values"),
+    ("hippo/cognitive_map/shortest_paths.py", r"rev.col.astype\(np.int64\), n\)",
+     r"rev.col.astype\(None\), n\)", "equivalent: _csr_pattern casts the columns to int32 "
+     "(exact for float64 indices) and counts only the rows"),
+    ("hippo/cognitive_map/shortest_paths.py", r"first\[1:\] = g\[1:\] != g\[:-1\]",
+     r"g\[1:\] != g\[:\+1\]", "equivalent: it only keeps more duplicates of a goal node "
+     "(never drops its cheapest, sorted first), parallel super-source edges whose cheapest "
+     "Dijkstra takes"),
+    ("hippo/cognitive_map/shortest_paths.py", r"\[indices, g.astype\(np.int32\)\]\)",
+     r"g.astype\(None\)\]\)", "equivalent: scipy casts the float64 indices (small whole "
+     "numbers, exact) back to its integer index type"),
+    ("hippo/tasks/patrol.py", r"grid = np.arange\(0.0, L, 1.0\)", r"np.arange\(0.0, L, None\)",
+     "equivalent: numpy's arange takes a step of None as 1"),
+    ("hippo/tasks/patrol.py", r"PatrolWarning, stacklevel=2\)", r"PatrolWarning, \)$",
+     "not measurable with mutmut: its trampoline adds a frame between the caller and the "
+     "warning (stacklevel 1 and 2 both name the mutated module)"),
+    ("hippo/envs/rewards.py", r'room = "room_a" if math.cos\(world.truth.pose\[2\]\) > 0 else',
+     r"\) >= 0 else", "equivalent: the cosine of a float is never exactly 0 (cos(pi/2) is 6e-17)"),
+    ("hippo/envs/rewards.py", r"^self.sounded = False$", r"^self.sounded = None$",
+     "equivalent: sounded is only tested for truth (not self.sounded, obs.sound and "
+     "self.sounded)"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the

@@ -152,8 +152,11 @@ class PatrolTask(Task):
     """
 
     def __init__(self, waits: Sequence[float] = (24.1, 19.1, 11.6), radius: float = 12.0) -> None:
-        try:
-            waits = tuple(float(w) for w in waits)
+        try:   # no string ("123" reads as 1, 2, 3 s), nor a string or bool wait ("24.1", True)
+            given = None if isinstance(waits, str | bytes) else tuple(waits)
+            if given is None or any(isinstance(w, str | bytes | bool | np.bool_) for w in given):
+                raise TypeError
+            waits = tuple(float(w) for w in given)
         except (TypeError, ValueError):   # 5, "abc", (None, 2, 3): no three waits
             raise ValueError(f"waits must be three waits in s, one per checkpoint, got "
                              f"{waits!r:.80}") from None

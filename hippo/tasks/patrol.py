@@ -170,6 +170,9 @@ class PatrolCourse:
         """Settle, one loop on the leash, one loop reproduced alone, then the checkpoints
         taught by blocks (in the order the route passes them, :attr:`order`, and the first
         once more); returns the fraction of the loop reproduced."""
+        if len(waits) != len(self.checkpoints):   # before the leash, not at the lesson
+            raise ValueError(f"waits must give one wait per checkpoint "
+                             f"({len(self.checkpoints)}), got {len(waits)}")
         s, agent, dt = self.s, self.agent, self.dt
         # let the place cells settle on the course before the leash (not moved: no re-anchoring)
         agent.lifted(moved=False)
@@ -277,6 +280,9 @@ class PatrolCourse:
     def adapt(self, waits: Sequence[float], arena: Any) -> tuple[float, float, int, int]:
         """A longer block at checkpoint 1, an early leash restart at checkpoint 2, then a loop
         and a bit alone; returns the two taught waits and the log rows of that loop."""
+        if min(len(self.checkpoints), len(waits)) < 2:
+            raise ValueError(f"adapt needs two checkpoints and their waits, got "
+                             f"{len(self.checkpoints)} and {len(waits)}")
         s, agent, dt = self.s, self.agent, self.dt
         longer = waits[0] + 8.0
         c1, c2 = self.checkpoints[0], self.checkpoints[1]
