@@ -11,14 +11,15 @@ from hippo._checks import check_finite
 
 
 def _check_Y(Y: np.ndarray, T: int | None = None, name: str = "Y") -> np.ndarray:
-    Y = np.asarray(Y, dtype=float)
+    # real numbers, named (np.asarray(Y, dtype=float) kept complex values' real part)
+    Y = check_finite(name, Y)
     if Y.ndim == 1:
         Y = Y[:, None]
     if Y.ndim != 2:
         raise ValueError(f"{name} must be (T, units), got shape {Y.shape}")
     if T is not None and Y.shape[0] != T:
         raise ValueError(f"{name} has {Y.shape[0]} rows, expected {T}")
-    return check_finite(name, Y)
+    return Y
 
 
 def _check_labels(labels: np.ndarray, n: int | None = None) -> np.ndarray:

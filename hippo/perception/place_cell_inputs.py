@@ -50,24 +50,28 @@ class SensorInputs:
             if fitting:
                 raise ValueError(msg + "; place cells are learned from sensor readings scaled to "
                                  "input_range: rescale U, or set input_range to its true range")
-            U = self._out_of_range(U, msg)
+            U = self._out_of_range(U, msg, stacklevel=4)  # a warning names transform's caller
         return U
 
-    def _out_of_range(self, u: np.ndarray, msg: str) -> np.ndarray:
-        """Apply the ``out_of_range`` policy to inputs outside ``input_range``."""
+    def _out_of_range(self, u: np.ndarray, msg: str, stacklevel: int = 3) -> np.ndarray:
+        """Apply the ``out_of_range`` policy to inputs outside ``input_range`` (a warning names
+        the line ``stacklevel`` frames up: step's caller by default)."""
         policy = self.params.out_of_range
         if policy == "error":
             raise ValueError(msg + "; the model was fitted on readings in that range and would "
                              "extrapolate (set out_of_range='clip' or 'warn' to clip instead)")
         if policy == "warn":
-            warnings.warn(msg + "; clipped to the range", InputRangeWarning, stacklevel=3)
+            warnings.warn(msg + "; clipped to the range", InputRangeWarning,
+                          stacklevel=stacklevel)
         lo, hi = self.params.input_range  # type: ignore[misc]
         return np.clip(u, lo, hi)
 
     def _check_trainable(self, U: np.ndarray) -> None:
         """Refuse recordings that cannot yield place cells: too short, or no sensor varies."""
         p = self.params
-        n_updates = -(-U.shape[0] // p.downsample) - p.washout
+        # the decimator updates at ticks f - 1, 2 f - 1, ...: T // f of them (a partial last
+        # block gives none)
+        n_updates = U.shape[0] // p.downsample - p.washout
         if n_updates < p.min_fit_ticks:
             raise ValueError(
                 f"U has {U.shape[0]} ticks ({n_updates} reservoir updates after a washout of "

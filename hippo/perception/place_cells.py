@@ -78,6 +78,8 @@ __all__ = [
 _HARVEST_CHUNK = 2048
 #: a fit holds the reservoir states up to this size, and streams them beyond (``fit(stream=)``)
 _HOLD_BYTES = 256 * 2**20
+#: the bounds of step's range check without ``input_range``: every finite reading, not inf
+_FLOAT_MAX = float(np.finfo(np.float64).max)
 
 
 class RCSFAICA(SensorInputs, ParamsEstimator):
@@ -339,9 +341,10 @@ class RCSFAICA(SensorInputs, ParamsEstimator):
             raise ValueError(f"sensor vector u must be {n} real numbers, got {u!r}") from None
         if u.shape != (n,):
             raise ValueError(f"sensor vector u must have shape ({n},), got {u.shape}")
-        # one cheap check per tick, float comparisons over the few readings: NaN fails them
+        # one cheap check per tick, float comparisons over the few readings: NaN fails them,
+        # and so does inf without a range (the bounds are then the largest finite floats)
         rng = self.params.input_range
-        lo, hi = (-np.inf, np.inf) if rng is None else rng
+        lo, hi = (-_FLOAT_MAX, _FLOAT_MAX) if rng is None else rng
         if not all(lo <= v <= hi for v in u.tolist()):
             if not np.isfinite(u).all():
                 raise ValueError(f"sensor vector u contains NaN or inf: {u}")

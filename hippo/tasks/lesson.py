@@ -133,7 +133,8 @@ def _check_learned(units: int, explore_min: float, dt: float, reanchor: bool) ->
         raise ValueError(f"units={units} exceeds the {p.sfa_inputs} inputs of the learned place "
                          f"cells' SFA ({p.n_inputs} IR readings + {p.n_reservoir} reservoir "
                          f"neurons): at most {p.sfa_inputs}")
-    need, why = (p.min_fit_ticks + p.washout - 1) * p.downsample + 1, "the place cells' fit"
+    # the fit's rule: (ticks // downsample) - washout >= min_fit_ticks
+    need, why = (p.min_fit_ticks + p.washout) * p.downsample, "the place cells' fit"
     if reanchor:
         r = RelocaliserParams()
         moving = r.skip + r.window + 2 * r.spread
