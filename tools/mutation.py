@@ -223,6 +223,21 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     # the Gymnasium tasks' reward rules
     "hippo/envs/rewards.py": ["tests/envs/test_rewards_rules.py", "tests/envs/test_envs.py",
                               "tests/envs/test_wrappers.py"],
+    # the world: pymunk space, obstacles, ray sensing, the step's odometry, interventions
+    "hippo/sim/world.py": ["tests/sim/test_world_rules.py", "tests/sim/test_world.py",
+                           "tests/sim/test_robot_rules.py", "tests/sim/test_controllers_rules.py",
+                           "tests/tasks/test_session_rules.py"],
+    # the arena's geometry: zones, regions, wall distances, the free grid, shortest paths
+    "hippo/sim/arena.py": ["tests/sim/test_arena_rules.py", "tests/sim/test_world.py",
+                           "tests/sim/test_geodesic.py", "tests/sim/test_builder_rules.py",
+                           "tests/sim/test_flats.py"],
+    # dead reckoning from odometry
+    "hippo/sim/odometry.py": ["tests/sim/test_odometry_rules.py", "tests/sim/test_world.py",
+                              "tests/test_brain.py"],
+    # the teacher's leash, block and sound
+    "hippo/sim/teacher.py": ["tests/sim/test_teacher_rules.py",
+                             "tests/tasks/test_session_rules.py",
+                             "tests/tasks/test_teaching_rules.py", "tests/sim/test_world.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -754,6 +769,55 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
     ("hippo/tasks/explore.py", r"^xy = pose\[:, :2\]$", r"^xy = pose\[:, :3\]$",
      "equivalent: np.hypot takes the third column as its out array, so the distances are the "
      "same (checked), and only columns 0 and 1 are interpolated"),
+    ("hippo/sim/world.py", r'^st\["seed"\]\)$', r"^(None)?\)$", "equivalent: the restored world "
+     "is reset with st['seed'] next, which sets its seed and its random stream"),
+    ("hippo/sim/world.py", r'world.reset\(st\["seed"\], pose=\(x, y, st\["angle"\]\)\)',
+     r'pose=None\)$|world.reset\(st\["seed"\], \)$', "equivalent: the body is put at the saved "
+     "position and angle just after; rays start from the body and chipmunk reindexes a dynamic "
+     "body's shape at the next step"),
+    ("hippo/sim/world.py", r'getattr\(self, "truth", None\)', r'getattr\(self, "truth", \)',
+     "equivalent: reset, run by the constructor, always sets truth"),
+    ("hippo/sim/world.py", r"x, y, h = self.pose if pose is None else pose|None if "
+     r"self._interventions else \(x1, y1, h1\)\)", r"or True|sound, (None)?\)$", "equivalent: "
+     "without interventions the pose handed over is self.pose just read (it saves a second read)"),
+    ("hippo/sim/world.py", r"travel = self.robot.speed_max \* self.dt / 1.0",
+     r"self.dt \* 1.0", "equivalent: dividing and multiplying by 1.0 give the same float"),
+    ("hippo/sim/world.py", r"moment_for_circle\(r.mass, 0, r.radius\)",
+     r"moment_for_circle\(r.mass, 1, r.radius\)", "equivalent: the turn rate is imposed every "
+     "substep, and contacts on the frictionless circle act through its centre (no torque)"),
+    ("hippo/sim/teacher.py", r"self._waypoints(: .*)? = \[\]", r"= None$", "equivalent: the "
+     "waypoints are only tested for truth (leading, override) until lead() sets a list"),
+    ("hippo/sim/teacher.py", r"self._speed: float \| None = None", r'= ""$', "equivalent: "
+     "override reads it only after lead() set it, and '' is falsy as None"),
+    ("hippo/sim/arena.py", r'np.einsum\("ij,ij->i"', r'np.einsum\("IJ,IJ->I"',
+     "equivalent: einsum's subscripts are only labels; upper-case ones sum the same axes"),
+    ("hippo/sim/arena.py", r"np.asarray\((p|q|x|y|block|avoid), float\)|np.array\(\[x, y\], float\)"
+     r"|dtype=float\)$", r"np.asarray\((p|q|x|y|block|avoid), (None)?\)|\], (None)?\)$|"
+     r"dtype=None\)$|b\[1\]\] for a, b in self.walls\], \)$", "equivalent: the points and "
+     "walls are numbers (the builder's walls floats); an int array gives the same float results"),
+    ("hippo/sim/arena.py", r"np.full\(np.shape\(x\), -1, dtype=int\)", r"-1, (dtype=None)?\)$",
+     "equivalent: np.full takes the integer dtype of the fill value -1"),
+    ("hippo/sim/arena.py", r"np.linspace\(av\[:-1\], av\[1:\], 8, axis=0\)", r", 8, (axis=1)?\)",
+     "equivalent: axis=0 is np.linspace's default; along axis 1 the same points come in another "
+     "order (reshaped to pairs, they mark the same cells)"),
+    ("hippo/sim/arena.py", r"reshape\(-1, 2\)", r"reshape\(-2, 2\)",
+     "equivalent: numpy takes any negative size as the unknown one (checked, numpy 2.4)"),
+    ("hippo/sim/arena.py", r"on = np.ones\(free.shape, bool\)", r"free.shape, (None)?\)$",
+     "equivalent: float ones marked 0.0 give the same distance transform as booleans"),
+    ("hippo/sim/arena.py", r"ny - 1\)\] = False", r"\] = None$",
+     "equivalent: None written into a boolean array is False"),
+    ("hippo/sim/arena.py", r"length = np.full\(free.shape, np.inf\)", r"shape, None\)$",
+     "equivalent: only the lengths of reached cells, all written as floats, are read"),
+    ("hippo/sim/arena.py", r"a, b = i \+ dx, j \+ dy", r"i - dx|j - dy",
+     "equivalent: the 8 steps are symmetric, each with the cost of its own length"),
+    ("hippo/sim/arena.py", r'float\("inf"\)', r'float\("INF"\)',
+     "equivalent: float() reads 'INF' as infinity"),
+    ("hippo/sim/arena.py", r"np.clip\(1.0 - extra / clearance, 0.0, 1.0\)", r"0.0, (None|2.0)\)",
+     "equivalent: a free cell's extra clearance is at least cell / 2 > 0, so 1 - e / c < 1"),
+    ("hippo/sim/arena.py", r"clearance=0.0, thin=False\)", r"thin=None\)",
+     "equivalent: None is falsy, as False"),
+    ("hippo/sim/arena.py", r"return bool\(np.all\(dist >= reach - 1e-9\)\)", r"dist > reach",
+     "equivalent: differs only for a distance equal to reach - 1e-9 to the last bit"),
     ("hippo/tasks/explore.py", r"i0 = min\(round\(settle_s / world.dt\), len\(xy\) - 1\)",
      r"len\(xy\) - 2\)", "equivalent: settled at the last pose or the one before, a return "
      "needs > 100 cm of path after it, which one step (ending within 4 cm of where it "

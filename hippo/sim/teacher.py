@@ -31,14 +31,18 @@ class Teacher:
 
     def __init__(self, world: World, lead_speed: float | None = None, tolerance: float = 3.0
                  ) -> None:
+        """``lead_speed`` (cm/s, default: the robot's ``speed_max``) and ``tolerance`` (cm: a
+        waypoint this near is reached) must be finite and > 0."""
         self.world = world
-        self.lead_speed = lead_speed
-        self.tolerance = tolerance
+        self.lead_speed = None if lead_speed is None else check_positive("lead_speed",
+                                                                         lead_speed)
+        self.tolerance = check_positive("tolerance", tolerance)
         self.reset()
         world.attach(self)
 
     def reset(self) -> None:
         self._waypoints: list[tuple[float, float]] = []
+        self._speed: float | None = None
         self._block: Obstacle | None = None
         self._block_until = 0.0
 
@@ -61,8 +65,9 @@ class Teacher:
         pts = check_finite("waypoints", waypoints)
         if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) == 0:
             raise ValueError(f"waypoints must be a non-empty list of (x, y), got shape {pts.shape}")
+        lead_speed = check_positive("lead speed", speed) if speed is not None else None
         self._waypoints = [(float(x), float(y)) for x, y in pts]
-        self._speed = check_positive("lead speed", speed) if speed is not None else None
+        self._speed = lead_speed
         self.world.events.append((self.world.t, "lead_start", f"{len(pts)} waypoints"))
 
     def stop_leading(self) -> None:

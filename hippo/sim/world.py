@@ -68,7 +68,7 @@ class World:
     arena : the static geometry (see :mod:`hippo.sim.arenas`).
     robot : body and drive parameters (default: the e-puck of SMC09).
     sensors : ``"ir8"`` (SMC09), ``"ray17"`` (ICANN09) or a :class:`SensorModel`.
-    dt : control period in s; ``substeps`` physics steps (at least) per control period, raised
+    dt : control period in s (>= 1 ns); ``substeps`` physics steps (at least) per period, raised
         automatically so that the robot travels at most about 1 cm per physics step.
     seed : seed of the world's random stream (sensor and odometry noise).
     """
@@ -81,12 +81,12 @@ class World:
                              f"got {arena!r:.80}")
         if robot is not None and not isinstance(robot, RobotParams):
             raise ValueError(f"robot must be RobotParams or None, got {type(robot).__name__}")
-        if seed is not None:
-            check_seed("seed", seed)
         self.arena = arena
         self.robot = robot or RobotParams()
         self.sensors = get_sensor_model(sensors)
         self.dt = check_positive("dt", dt)
+        if self.dt < 1e-9:
+            raise ValueError(f"dt must be >= 1e-9 s (the clock counts nanoseconds), got {dt!r}")
         check_int("substeps", substeps, lo=1, hi=MAX_SUBSTEPS)
         # at most ~1 cm of travel per physics step, so contacts are resolved before the body
         # sinks into a wall (penetration is about one step's travel; 10x speed needs 11 steps)
@@ -160,7 +160,10 @@ class World:
     # -- construction -----------------------------------------------------------------------
     def reset(self, seed: int | None = None, pose: tuple[float, float, float] | None = None
               ) -> Observation:
-        """Rebuild the space, put the robot at ``pose`` (default: the arena's start pose)."""
+        """Rebuild the space, put the robot at ``pose`` (default: the arena's start pose);
+        ``seed`` (an integer in [0, 2**63), or None) seeds the noise."""
+        if seed is not None:
+            check_seed("seed", seed)
         x, y, h = self._check_pose(pose if pose is not None else self.arena.start_pose)
         self.rng = np.random.default_rng(seed)
         self.seed = seed
