@@ -5,7 +5,7 @@ sense-act cycle) in ``substeps`` physics steps and returns an :class:`~hippo.typ
 (what the robot senses, nothing more); ``World.truth`` is the matching
 :class:`~hippo.types.GroundTruth` (pose, speed) for analysis, recordings and the teacher. Units
 are centimetres, seconds and radians. ``reset(seed)`` rebuilds the pymunk space from scratch
-(pymunk keeps contact state between steps, so moving the robot back is not a reset).
+(pymunk keeps contact state; moving the robot back is no reset); ``reset()`` keeps the noise.
 
 Something outside the robot that acts on the world every tick (the teacher of
 :mod:`hippo.sim.teacher`) is an :class:`Intervention`: it attaches itself with
@@ -161,12 +161,13 @@ class World:
     def reset(self, seed: int | None = None, pose: tuple[float, float, float] | None = None
               ) -> Observation:
         """Rebuild the space, put the robot at ``pose`` (default: the arena's start pose);
-        ``seed`` (an integer in [0, 2**63), or None) seeds the noise."""
+        ``seed`` (an integer in [0, 2**63)) seeds the noise again; None goes on with the noise
+        stream (Gymnasium's convention: a seeded world stays reproducible across resets)."""
         if seed is not None:
             check_seed("seed", seed)
         x, y, h = self._check_pose(pose if pose is not None else self.arena.start_pose)
-        self.rng = np.random.default_rng(seed)
-        self.seed = seed
+        if seed is not None or not hasattr(self, "rng"):
+            self.rng, self.seed = np.random.default_rng(seed), seed
         self.space = space = pymunk.Space()
         space.iterations = 10
         for a, b in self.arena.walls:
@@ -179,8 +180,7 @@ class World:
         shape = pymunk.Circle(body, r.radius)
         shape.friction, shape.elasticity = 0.0, 0.0
         shape.filter = pymunk.ShapeFilter(categories=_CAT_ROBOT)
-        self._v = 0.0
-        self._omega = 0.0
+        self._v, self._omega = 0.0, 0.0
 
         def drive(b: pymunk.Body, gravity: object, damping: float, dt: float) -> None:
             # the properties' own getter and setters (b.velocity = ... without pymunk's

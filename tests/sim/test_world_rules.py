@@ -652,3 +652,30 @@ def test_a_restore_refuses_a_random_stream_that_is_not_a_generator():
     st["rng"] = np.random.RandomState(0)
     with refused("rng must be a numpy Generator"):
         World.__snapshot_restore__(st)
+
+
+def test_reset_without_a_seed_goes_on_with_the_noise_stream():
+    # Gymnasium's convention: reset() keeps the stream, reset(seed) starts it again; a world
+    # made with seed 0 gives the same noise after reset() on every run
+    from hippo.sim import World, arenas
+
+    def readings(world: World) -> np.ndarray:
+        return np.array([world.step((0.0, 0.0)).ir for _ in range(3)])
+
+    a, b = World(arenas.get("two-rooms"), seed=0), World(arenas.get("two-rooms"), seed=0)
+    first = readings(a)
+    assert np.array_equal(first, readings(b))
+    a.reset(), b.reset()
+    again_a, again_b = readings(a), readings(b)
+    assert np.array_equal(again_a, again_b)          # reproducible across reset()
+    assert not np.array_equal(again_a, first)        # the stream went on: other noise
+    assert a.seed == 0
+    a.reset(0)
+    assert np.array_equal(readings(a), first)        # reset(0) starts the stream again
+    # the stream reset() keeps is the world's own generator (reset(5) makes a new one)
+    c = World(arenas.get("two-rooms"), seed=5)
+    rng = c.rng
+    c.reset()
+    assert c.rng is rng and c.seed == 5
+    c.reset(5)
+    assert c.rng is not rng
