@@ -16,6 +16,7 @@ Build a new arena with :class:`~hippo.sim.builder.ArenaBuilder`::
 from __future__ import annotations
 
 import heapq
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from itertools import pairwise
@@ -110,12 +111,16 @@ class Arena:
         return np.argmin(d, axis=-1)
 
     def wall_array(self) -> np.ndarray:
-        """Walls as an ``(n, 4)`` array ``x0, y0, x1, y1``."""
-        return np.array([[a[0], a[1], b[0], b[1]] for a, b in self.walls], dtype=float)
+        """Walls as an ``(n, 4)`` array ``x0, y0, x1, y1`` (``(0, 4)`` without walls)."""
+        return np.array([[a[0], a[1], b[0], b[1]] for a, b in self.walls],
+                        dtype=float).reshape(-1, 4)
 
     def distance_to_walls(self, x: float, y: float) -> float:
-        """Euclidean distance from a point to the nearest wall segment's centre line."""
+        """Euclidean distance from a point to the nearest wall segment's centre line (inf in
+        an arena without walls)."""
         w = self.wall_array()
+        if not len(w):
+            return math.inf
         a, b = w[:, :2], w[:, 2:]
         p = np.array([x, y], float)
         ab = b - a

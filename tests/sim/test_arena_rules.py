@@ -630,3 +630,17 @@ def test_a_grid_step_grazing_a_wall_end_is_kept():
     optimum = 2 * math.sqrt(d * d - r * r) + r * (2 * math.pi - 2 * math.atan(8 / 8.9)
                                                   - 2 * math.acos(r / d))
     assert optimum <= arena.geodesic_distance((40, 30), (56, 30)) <= 1.08 * optimum
+
+
+def test_an_arena_without_walls_is_open_floor():
+    # built directly (the builder refuses one): every disc inside the bounds is free, no wall
+    # is near, and the free grid is the bounds shrunk by the radius
+    open_floor = Arena(name="open", width=50.0, height=40.0, walls=(), zones=(), regions=(),
+                       locations=np.zeros((0, 2)), start_pose=(25.0, 20.0, 0.0), landmarks={})
+    assert open_floor.wall_array().shape == (0, 4)
+    assert open_floor.distance_to_walls(1.0, 1.0) == math.inf
+    assert open_floor.is_free(25.0, 20.0, 3.7) and open_floor.is_free(4.0, 4.0, 4.0)
+    assert not open_floor.is_free(3.9, 20.0, 4.0)          # the bounds still hold
+    xs, ys, free = open_floor.free_grid(4.0, cell=10.0)     # centres 5, 15, ..., 45 and 5..35
+    assert list(xs) == [5.0, 15.0, 25.0, 35.0, 45.0] and list(ys) == [5.0, 15.0, 25.0, 35.0]
+    assert free.all()
