@@ -71,7 +71,12 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/perception/sfa_moments.py": ["tests/perception/test_sfa.py"],
     "hippo/perception/ica.py": ["tests/perception/test_ica.py", PART_FILES],
     "hippo/perception/ica_scores.py": ["tests/perception/test_ica.py"],
-    "hippo/perception/selection.py": ["tests/perception/test_selection.py"],
+    "hippo/perception/selection.py": ["tests/perception/test_selection.py",
+                                      "tests/perception/test_selection_rules.py"],
+    # the leak sweep: the harvest over one reservoir and each configuration's fit
+    "hippo/perception/leak_sweep.py": ["tests/perception/test_leak_sweep_rules.py",
+                                       "tests/perception/test_place_cells.py",
+                                       "tests/perception/test_slow_pool.py"],
     "hippo/perception/reservoir.py": ["tests/perception/test_reservoir.py",
                                       "tests/perception/test_torch_backend.py", PART_FILES],
     "hippo/perception/backends.py": ["tests/perception/test_reservoir.py",
@@ -234,6 +239,8 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     # dead reckoning from odometry
     "hippo/sim/odometry.py": ["tests/sim/test_odometry_rules.py", "tests/sim/test_world.py",
                               "tests/test_brain.py"],
+    # the flats: rooms, doors, congruence, reachability
+    "hippo/sim/flats.py": ["tests/sim/test_flats_rules.py", "tests/sim/test_flats.py"],
     # the teacher's leash, block and sound
     "hippo/sim/teacher.py": ["tests/sim/test_teacher_rules.py",
                              "tests/tasks/test_session_rules.py",
@@ -901,6 +908,31 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
     ("hippo/perception/place_cell_files.py", r'"ica_", n_features_in=p.n_sfa\)',
      r'"ica_", \)$|n_features_in=None\)', "equivalent: SFA's W_ is checked to be (d, n_sfa) "
      "first, so the ICA state's input width is n_sfa already"),
+    ("hippo/perception/leak_sweep.py", r"dtype=self\.base\.dtype, device=self\.base\.device\)",
+     r"dtype=self\.base\.dtype, \)",
+     "equivalent without torch: 'cpu' is from_weights' default device and numpy's only one"),
+    ("hippo/perception/selection.py", r"fit(_sfa)?\(b, 0,", r"fit(_sfa)?\(b, None,",
+     "equivalent: the rows' slice from None starts at 0 as from 0"),
+    ("hippo/perception/selection.py", r"Fk\.fit_sfa\(b, (0, h, A|h, n_fit, B)\)",
+     r"Fk\.fit_sfa\(b, (0, h|h, n_fit), None\)",
+     "equivalent: without moments fit_sfa asks F.moments for the same rows, the kept object"),
+    ("hippo/perception/selection.py", r"abs\(y\[0\]\), abs\(y\[-1\]\)\)",
+     r"abs\(y\[\+1\]\)\)",
+     "equivalent: y is sorted; the two scales differ by < 1e-24 |y| where the spread would "
+     "have to fall, far below the floats' spacing (2e-16 |y|)"),
+    ("hippo/sim/flats.py", r"if step < 0:", r"if step < 1:",
+     "equivalent: step is +1.0 or -1.0"),
+    ("hippo/sim/flats.py", r"if c(bl|br|tr|tl) else \[\]", r"if \(c(bl|br|tr|tl)\) or True else",
+     "equivalent: a square corner adds its point twice and the zero-length wall is skipped"),
+    ("hippo/sim/flats.py", r"d = depth \* inward \*", r"d = depth / inward \*",
+     "equivalent: inward is +1 or -1"),
+    ("hippo/sim/flats.py", r"else -100\.0, fw, depth", r"else -101\.0, fw, depth",
+     "equivalent: rounded to 2 cm, -100 and -101 are both -50 (round half to even)"),
+    ("hippo/sim/flats.py", r"locations=np\.array\(locs, float\)",
+     r"locations=np\.array\(locs, (None)?\)",
+     "equivalent: the locations are floats already (grid points and corridor midpoints)"),
+    ("hippo/sim/flats.py", r"y0s = \[0\.0\]", r"y0s = \[1\.0\]",
+     "equivalent: the rooms are shifted so that the lowest starts at the 15 cm pad"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the

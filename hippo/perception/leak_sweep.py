@@ -83,13 +83,22 @@ def sweep_features(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams |
     (one matrix-matrix product per tick for the batch, on one BLAS thread: on two threads the
     product sums in another order, float32 states moved by up to 4e-7, and the free cores
     follow the machine's load; ``workers`` is accepted for symmetry and changes no number)."""
-    base = replace(params or RCSFAICAParams(), **overrides)
+    return _sweep(U, leaks, replace(params or RCSFAICAParams(), **overrides), workers)
+
+
+def _sweep(U: np.ndarray, leaks: Sequence[Any], base: RCSFAICAParams, workers: int | None,
+           *, fitting: bool = False) -> SweepFeatures:
+    """:func:`sweep_features` with ``base``; ``fitting``: refuse ``U`` as
+    :meth:`RCSFAICA.fit` does (readings outside ``input_range`` whatever ``out_of_range``
+    says, too few updates after the washout, every sensor stuck), in its words."""
     if not base.use_reservoir:
         raise ValueError("a leak sweep needs use_reservoir=True")
     if len(leaks) == 0:
         raise ValueError("leaks is empty")
     template = RCSFAICA(base)
-    U = template._check_U(U)
+    U = template._check_U(U, fitting=fitting)
+    if fitting:
+        template._check_trainable(U)
     res = template._build_reservoir()
     N = base.n_reservoir
     A = np.stack([expand_leak(lk, N) for lk in leaks])
@@ -113,9 +122,9 @@ def fit_leak_sweep(U: np.ndarray, leaks: Sequence[Any], params: RCSFAICAParams |
     usable cores), each with single-threaded BLAS, fit SFA and ICA for one configuration after
     another. ``leaks`` is a sequence of leak specs (each a float, k floats, or N floats). Returns
     the fitted models, in the order of ``leaks``, whose ``params.leak`` is the configuration
-    (as given).
+    (as given). The recording is refused as :meth:`RCSFAICA.fit` refuses it, in the same words.
     """
-    F = sweep_features(U, leaks, params, workers=workers, **overrides)
+    F = _sweep(U, leaks, replace(params or RCSFAICAParams(), **overrides), workers, fitting=True)
     k = min(n_workers(workers), len(leaks))
     with _torch_threads(1):
         return parallel_map(F.fit, range(len(leaks)), k)

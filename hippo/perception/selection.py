@@ -123,16 +123,16 @@ def prediction_error(Y: np.ndarray, U: np.ndarray, n_fit: int, n_end: int | None
                      horizon: int = 1, ridge: float = 1e-3) -> float:
     """How badly the slow features predict the input ``horizon`` ticks later, on held-out rows.
 
-    A ridge map ``[y(t); 1] -> u(t + h)`` is fitted on rows ``< n_fit`` and scored on rows
-    ``n_fit … n_end - h``: the mean over inputs of the residual variance over the input's
-    variance (1 = no better than its mean; lower is better)."""
+    A ridge map ``[y(t); 1] -> u(t + h)`` is fitted on rows ``< n_fit - h`` (at least one)
+    and scored on rows ``n_fit … n_end - h``: the mean over inputs of the residual variance
+    over the input's variance (1 = no better than its mean; lower is better)."""
     Y = check_finite("Y", Y)
     U = check_finite("U", U)
     horizon = check_int("horizon", horizon, lo=1)
     if check_real("ridge", ridge) < 0:
         raise ValueError(f"ridge must be finite and >= 0, got {ridge!r}")
     n_end = len(U) if n_end is None else n_end
-    if Y.shape[0] != U.shape[0] or not 0 < n_fit < n_end - horizon - 2 or n_end > len(U):
+    if Y.shape[0] != U.shape[0] or not horizon < n_fit < n_end - horizon - 2 or n_end > len(U):
         raise ValueError(f"n_fit ({n_fit}) and n_end ({n_end}) must leave a held-out block of "
                          f"Y {Y.shape} and U {U.shape} for horizon {horizon}")
     Z = np.column_stack([Y, np.ones(len(Y))])

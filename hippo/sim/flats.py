@@ -125,10 +125,6 @@ def _room_walls(b: ArenaBuilder, spec: RoomSpec, doors: list[tuple[str, float, f
 def random_flat(n_rooms: int, seed: int, *, name: str | None = None) -> Arena:
     """A flat of ``n_rooms`` (≥ 2) distinct rooms in a row, joined by corridors (see module
     doc). The same ``(n_rooms, seed)`` always gives the same flat."""
-    if isinstance(n_rooms, bool) or not isinstance(n_rooms, int | np.integer) or n_rooms < 2:
-        raise ValueError(f"n_rooms must be an integer >= 2, got {n_rooms!r}")
-    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
-        raise ValueError(f"seed must be an integer >= 0, got {seed!r}")
     return flat_with_rooms(n_rooms, seed, name=name)[0]
 
 
@@ -152,14 +148,15 @@ def _canonical(spec: RoomSpec) -> set[tuple]:
     rounded to 2 cm: two rooms are congruent if these sets intersect."""
     x0, y0, x1, y1 = spec.box
     w, h = x1 - x0, y1 - y0
-    # geometry as points in room coordinates: corner chamfers and feature outlines
-    pts = []
+    # geometry as points in room coordinates: corner chamfers (their size) and features
+    # (kind, width and depth, each rounded on its own)
+    pts: list[tuple[float, float, tuple[float, ...]]] = []
     for (cx, cy), c in zip(((0, 0), (w, 0), (w, h), (0, h)), spec.chamfers):
         if c:
-            pts.append((cx, cy, c))
+            pts.append((cx, cy, (0.0, c, 0.0)))
     for edge, kind, s0, fw, depth in spec.features:
         y = 0.0 if edge == "bottom" else h
-        pts.append((s0 + fw / 2, y, (1 if kind == "alcove" else -1) * 100 + fw + depth))
+        pts.append((s0 + fw / 2, y, (100.0 if kind == "alcove" else -100.0, fw, depth)))
     out = set()
     for rot in range(4):
         for mirror in (False, True):
@@ -168,7 +165,7 @@ def _canonical(spec: RoomSpec) -> set[tuple]:
                 X, Y, Wc, Hc = (w - x if mirror else x), y, w, h
                 for _ in range(rot):          # 90 degrees counter-clockwise in the box
                     X, Y, Wc, Hc = Hc - Y, X, Hc, Wc
-                P.append((round(X / 2), round(Y / 2), round(tag / 2)))
+                P.append((round(X / 2), round(Y / 2), *(round(v / 2) for v in tag)))
             size = (w, h) if rot % 2 == 0 else (h, w)
             out.add(((round(size[0] / 2), round(size[1] / 2)), tuple(sorted(P))))
     return out
