@@ -3,8 +3,10 @@
 Run: ``nice -n 10 python tools/mutation.py [MODULE ...] [--sample N --seed S] [--survivors]
 [--json FILE]`` (default modules: ``NEURAL_MODULES``; the task metrics' modules,
 ``hippo/tasks/{routes,passes,patrol_report,deployment}.py``, the closed loop's
-``hippo/{motor,soft_recognition,waits}.py``, and the sweep's and checkpoints'
-``hippo/{sweep,sweep_cells,resume}.py`` have their tests here too).
+``hippo/{motor,soft_recognition,waits}.py``, the sweep's and checkpoints'
+``hippo/{sweep,sweep_cells,resume}.py``, and the recordings', the Gymnasium environment's and
+wrapper's, the progress bars' and the scenario runner's ``hippo/{sim/record,envs/robot,
+envs/wrappers,progress,runner}.py`` have their tests here too).
 Needs mutmut: ``pip install -e ".[mutation]"``.
 
 The tool builds a scratch copy of the project in ``--out`` (``hippo/``, ``tests/``, and
@@ -245,6 +247,18 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/sim/teacher.py": ["tests/sim/test_teacher_rules.py",
                              "tests/tasks/test_session_rules.py",
                              "tests/tasks/test_teaching_rules.py", "tests/sim/test_world.py"],
+    # recordings: the run's per-tick arrays, slicing, the checked .npz round trip
+    "hippo/sim/record.py": ["tests/sim/test_record_rules.py", "tests/sim/test_world.py",
+                            "tests/sim/test_faults_rules.py"],
+    # the Gymnasium wrapper that adds hippo's place and time cells to the observation
+    "hippo/envs/wrappers.py": ["tests/envs/test_wrappers_rules.py", "tests/envs/test_wrappers.py"],
+    # the Gymnasium robot environment: spaces, reset's options, step's action, the info
+    "hippo/envs/robot.py": ["tests/envs/test_robot_env_rules.py", "tests/envs/test_envs.py",
+                            "tests/envs/test_rewards_rules.py"],
+    # progress bars: counted steps, the timed long step, quiet runs
+    "hippo/progress.py": ["tests/test_progress_rules.py", "tests/test_progress.py"],
+    # the scenario registry, its parsers and running one
+    "hippo/runner.py": ["tests/test_runner_rules.py", "tests/test_cli.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -933,6 +947,46 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      "equivalent: the locations are floats already (grid points and corridor midpoints)"),
     ("hippo/sim/flats.py", r"y0s = \[0\.0\]", r"y0s = \[1\.0\]",
      "equivalent: the rooms are shifted so that the lowest starts at the 15 cm pad"),
+    ("hippo/envs/robot.py", r"(Box\(.*|^)np\.float32\),?$", r"(, |^)\),?$",
+     "equivalent: float32 is a gymnasium Box's default dtype"),
+    ("hippo/envs/robot.py", r"integers\(0, 2\*\*63 - 1\)", r"integers\(2\*\*63 - 1\)",
+     "equivalent: integers(n) draws from [0, n) like integers(0, n)"),
+    ("hippo/envs/robot.py", r"reshape\(-1\)", r"reshape\(-2\)",
+     "equivalent: numpy takes any negative size as the one to infer"),
+    ("hippo/envs/robot.py", r"a = np\.full\(0, np\.nan\)", r"np\.full\((1, np\.nan|0, None)\)",
+     "equivalent: one value is no pair either; the same refusal follows"),
+    ("hippo/envs/robot.py", r"np\.clip\(a, -1\.0, 1\.0\)", r"np\.clip\(a, -2\.0, 1\.0\)|"
+     r"np\.clip\(a, -1\.0, (2\.0|None)\)|"
+     r"np\.clip\(a, None, 1\.0\)", "equivalent: the robot limits the wheel commands to "
+     "+-speed_max again (RobotParams.limit_wheels)"),
+    ("hippo/envs/wrappers.py", r"(Box\(.*|^)np\.float32\),?$", r"(, |^)\),?$",
+     "equivalent: float32 is a gymnasium Box's default dtype"),
+    ("hippo/progress.py", r"file=sys\.stderr,$", r"file=None,$|disable=not self\.enabled, "
+     r"mininterval", "equivalent: tqdm writes to sys.stderr, read when the bar is made, "
+     "when given no file"),
+    ("hippo/progress.py", r"leave=True\)$", r"dynamic_ncols=True, \)$",
+     "equivalent: leave=True is tqdm's default"),
+    ("hippo/sim/record.py", r"event_t=np\.array\(\[e\[0\] for e in ev\], float\)",
+     r"\], None\)|\], \)", "equivalent: the events' times are floats, and no events give "
+     "float64 too"),
+    ("hippo/sim/record.py", r"World\(arena, robot=robot, sensors=sensors, dt=dt, seed=seed\)",
+     r"seed=None\)|dt=dt, \)$", "equivalent: world.reset(seed) right after it seeds the "
+     "world's noise again (its only random stream)"),
+    ("hippo/sim/record.py", r'fmt\.dtype\.kind != "U" or fmt\.shape != \(\) or',
+     r'"U" and fmt\.shape', "equivalent: a tag that is no text scalar never reads as the "
+     "format's text either (str gives np.bytes_(...) or [...]); the message is worked out apart"),
+    ("hippo/envs/robot.py", r"Box\(-self\._odometry_bound, self\._odometry_bound, \(3,\),",
+     r"_odometry_bound, None,$", "equivalent: Box takes the shape from its (3,) bounds"),
+    ("hippo/envs/robot.py", r"World\(task\.arena, .*seed=None\)", r"dt=dt, \)$",
+     "equivalent: every episode's reset seeds the world (World's own default seed is 0)"),
+    ("hippo/sim/record.py", r'arrays\["region_names"\] = np\.array\(self\.region_names, dtype=str',
+     r'arrays\["(XXregion_namesXX|REGION_NAMES)"\]|dtype=None\)$|region_names, \)$',
+     "equivalent: the field itself is saved as the same text array; no names give an empty "
+     "float array, which load takes as no names"),
+    ("hippo/sim/record.py", r"if T > 1 and not \(np\.diff", r"if T >= 1 and",
+     "equivalent: one tick has no differences to check"),
+    ("hippo/sim/record.py", r"else \(np\.inf, -np\.inf\)", r"else \(np\.inf, \+np\.inf\)",
+     "equivalent: no event time is infinite (load refuses one, the world's clock is finite)"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the

@@ -23,6 +23,7 @@ stream. ``reset(options={"pose": (x, y, heading)})`` starts at a chosen pose ins
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Any, ClassVar
 
 import gymnasium as gym
@@ -84,6 +85,8 @@ class RobotEnv(gym.Env):
         """
         super().reset(seed=seed)
         options = options or {}
+        if not isinstance(options, Mapping):
+            raise ValueError(f"options must be a dict, got {options!r:.80}")
         unknown = set(options) - {"pose"}
         if unknown:
             raise ValueError(f"unknown reset option(s) {sorted(unknown)}; allowed: 'pose'")

@@ -54,10 +54,12 @@ class Recording:
         return np.stack([self.x, self.y], axis=1)
 
     def slice(self, start: int, stop: int) -> Recording:
-        """The ticks ``start:stop`` (events inside that time span are kept)."""
+        """The ticks ``start:stop``, as Python slices them (negative indices count from the
+        end), and the events from the first kept tick's time to the last's (none if no tick
+        is kept)."""
         sl = slice(start, stop)
-        t0 = self.t[start] if start < len(self.t) else np.inf
-        t1 = self.t[stop - 1] if 0 < stop <= len(self.t) else np.inf
+        kept = range(len(self.t))[sl]
+        t0, t1 = (self.t[kept[0]], self.t[kept[-1]]) if len(kept) else (np.inf, -np.inf)
         keep = (self.event_t >= t0) & (self.event_t <= t1)
         per_tick = {f.name: getattr(self, f.name)[sl] for f in fields(self)
                     if isinstance(getattr(self, f.name), np.ndarray)
@@ -153,17 +155,23 @@ def record(arena: Arena | str, ticks: int, *, seed: int = 0, rho: float = 0.008,
 
     The default controller is SMC09's :class:`WallFollower` with switching probability ``rho``;
     pass any object with ``act(obs) -> (left, right)`` instead. ``kidnaps`` is a list of
-    ``(tick, (x, y, heading))``: before that tick the robot is moved there and keeps going.
+    ``(tick, (x, y, heading))``: before that tick (in ``[0, ticks)``, each at most once) the
+    robot is moved there and keeps going.
     """
     if isinstance(arena, str):
         arena = arena_registry.get(arena)
     ticks = check_int("ticks", ticks, lo=1)
+    kid: dict[int, tuple[float, float, float]] = {}
+    for tick, pose in kidnaps:
+        tick = check_int("kidnap tick", tick, lo=0, hi=ticks - 1)
+        if tick in kid:
+            raise ValueError(f"two kidnaps at tick {tick}")
+        kid[tick] = pose
     world = World(arena, robot=robot, sensors=sensors, dt=dt, seed=seed)
     world.reset(seed, pose=start_pose)
     if controller is None:
         controller = WallFollower(WallFollowerParams(rho=rho), sensors=world.sensors,
                                   robot=world.robot, rng=Seeds(seed).generator("recording"))
-    kid = dict(kidnaps)
     n = world.sensors.n
     S = np.empty((ticks, n))
     P = np.empty((ticks, 5))
