@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hippo._checks import check_array, check_int, check_positive
+from hippo._checks import check_array, check_int, check_positive, check_seed
 from hippo.io import CorruptFileError, load_npz, save_npz
 from hippo.progress import Progress
 from hippo.seeds import Seeds
@@ -111,7 +111,7 @@ def _checked_fields(data: dict[str, np.ndarray]) -> dict[str, object]:
     kw: dict[str, object] = {"arena": _text("arena", data["arena"]),
                              "sensor_model": _text("sensor_model", data["sensor_model"])}
     kw["dt"] = check_positive("dt", float(check_array("dt", data["dt"], shape=())))
-    kw["seed"] = int(check_array("seed", data["seed"], shape=(), dtype="int"))
+    kw["seed"] = check_seed("seed", int(check_array("seed", data["seed"], shape=(), dtype="int")))
     t = check_array("t", data["t"], shape=(None,))
     T = len(t)
     if T > 1 and not (np.diff(t) > 0).all():

@@ -161,6 +161,7 @@ def test_missing_arrays_are_named_in_field_order(tmp_path: Path):
     (dict(dt=np.array(0.0)), "dt must be finite and > 0, got 0.0"),
     (dict(dt=np.array([0.5])), "dt must have shape (), got (1,)"),
     (dict(seed=np.array(7.0)), "seed must hold integers, got dtype float64"),
+    (dict(seed=np.array(-1)), "seed must be an integer in [0, 9223372036854775807], got -1"),
     (dict(t=np.zeros((3, 1))), "t must have shape (*,), got (3, 1)"),
     (dict(t=np.array([0.5, np.inf, 1.5])), "t contains 1 non-finite value(s) (NaN or inf)"),
     (dict(t=np.array([0.5, 0.5, 1.5])), "t must increase from tick to tick"),
