@@ -78,14 +78,12 @@ def _list() -> None:
 def _top_parser() -> Parser:
     top = Parser(prog="hippo", description="hippocampus-inspired navigation of a simulated "
                  "robot: run its experiments, record runs")
-    sub = top.add_subparsers(dest="command", metavar="COMMAND")
-    sub.add_parser("run", help="run a scenario: hippo run NAME [options] (see hippo list)",
-                   add_help=False)
-    sub.add_parser("demo", help="drive the robot in the two-rooms arena (same as run demo)",
-                   add_help=False)
-    sub.add_parser("record", help="record a wall-following run to .npz", add_help=False)
-    sub.add_parser("sweep", help="run a scenario over seeds x parameters on Dask distributed",
-                   add_help=False)
+    # the commands, for the help only: _main reads them itself (each parses its own options)
+    sub = top.add_subparsers(metavar="COMMAND")
+    sub.add_parser("run", help="run a scenario: hippo run NAME [options] (see hippo list)")
+    sub.add_parser("demo", help="drive the robot in the two-rooms arena (same as run demo)")
+    sub.add_parser("record", help="record a wall-following run to .npz")
+    sub.add_parser("sweep", help="run a scenario over seeds x parameters on Dask distributed")
     sub.add_parser("list", help="list the scenarios with what each does")
     return top
 

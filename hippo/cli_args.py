@@ -69,9 +69,8 @@ def _bounds(lo: float | None, hi: float | None, *, lo_open: bool = False,
 
 
 def _within(v: float, lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> bool:
-    if lo is not None and (v < lo or (lo_open and v == lo)):
-        return False
-    return not (hi is not None and (v > hi or (hi_open and v == hi)))
+    return (not (lo is not None and (v < lo or (lo_open and v == lo)))
+            and not (hi is not None and (v > hi or (hi_open and v == hi))))
 
 
 def integer(lo: int | None = None, hi: int | None = None) -> Callable[[str], int]:
@@ -80,7 +79,7 @@ def integer(lo: int | None = None, hi: int | None = None) -> Callable[[str], int
 
     def parse(text: str) -> int:
         try:
-            v = int(text.strip().replace("_", ""))
+            v = int(text)   # int() itself takes spaces around and 1_000 (not _1, 1__0 or 1_)
         except ValueError:
             raise argparse.ArgumentTypeError(f"got {text!r}; needs {allowed}") from None
         if not _within(v, lo, hi, False, False):
@@ -119,14 +118,13 @@ def probability(text: str) -> float:
 def numbers(count: int | tuple[int, int] | None = None, lo: float | None = None,
             hi: float | None = None, *, lo_open: bool = False, unit: str = ""
             ) -> Callable[[str], list[float]]:
-    """Numbers separated by commas (``count`` of them, or between ``count[0]`` and
-    ``count[1]``), each in ``[lo, hi]``."""
+    """``count`` numbers (or ``count[0]`` to ``count[1]``) separated by commas, in ``[lo, hi]``."""
     one = number(lo, hi, lo_open=lo_open)
     lo_n, hi_n = (count, count) if isinstance(count, int) else (count or (1, None))
     how_many = (f"{lo_n}" if lo_n == hi_n else
                 f"{lo_n} or more" if hi_n is None else f"{lo_n} to {hi_n}")
-    allowed = (f"{how_many} comma-separated numbers "
-               f"{_bounds(lo, hi, lo_open=lo_open)}" + (f" ({unit})" if unit else ""))
+    allowed = (f"{how_many} comma-separated numbers {_bounds(lo, hi, lo_open=lo_open)}"
+               .replace("numbers any value", "finite numbers") + (f" ({unit})" if unit else ""))
 
     return _comma_list(one, allowed, "numbers",
                        lambda v: lo_n <= len(v) and (hi_n is None or len(v) <= hi_n))
@@ -217,8 +215,7 @@ def _comma_list(one: Callable[[str], Any], allowed: str, name: str,
 
 
 def points(count: tuple[int, int], unit: str = "") -> Callable[[str], list[tuple[float, float]]]:
-    """Points ``'x,y;x,y;...'`` (between ``count[0]`` and ``count[1]`` of them), finite
-    numbers."""
+    """Points ``'x,y;x,y;...'`` (``count[0]`` to ``count[1]`` of them), finite numbers."""
     allowed = (f"{count[0]} to {count[1]} points 'x,y' separated by ';'"
                + (f" ({unit})" if unit else ""))
 
@@ -226,7 +223,8 @@ def points(count: tuple[int, int], unit: str = "") -> Callable[[str], list[tuple
         out = []
         parts = _items(text, ";")
         if parts is None:
-            why = "no points" if not text.strip() else "an empty point between two ';'"
+            why = ("no points" if not text.replace(";", "").strip()
+                   else "an empty point between two ';'")
             raise argparse.ArgumentTypeError(f"got {text!r} ({why}); needs {allowed}")
         for part in parts:
             xy = part.split(",")
@@ -271,24 +269,27 @@ def sfa_cutoff(text: str) -> float | str:
 def slow_pool(text: str) -> float:
     """A slow pool's time constant in ticks: 0 (off) or a number >= 1."""
     from hippo.perception.slow_pool import check_slow_pool  # the command line loads lazily
-
     try:
-        return check_slow_pool(float(text))
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"got {text!r}; needs 0 (off) or a time constant >= 1 tick") from None
+    try:
+        return check_slow_pool(value)
     except ValueError as exc:
         raise argparse.ArgumentTypeError(f"got {text!r}: {exc}") from None
 
 
 def _first_existing(path: Path) -> Path:
-    p = path
-    while not p.exists() and p != p.parent:
-        p = p.parent
-    return p
+    while not path.exists() and path != path.parent:
+        path = path.parent
+    return path
 
 
-def _not_empty(text: str) -> None:
+def _not_empty(text: str, what: str = "a folder ('.': the current one)") -> None:
     """``Path("")`` is the current folder: ``--out ""`` (an unset variable) wrote there."""
     if not str(text):
-        raise argparse.ArgumentTypeError("got an empty path; name a folder ('.': the current one)")
+        raise argparse.ArgumentTypeError(f"got an empty path; name {what}")
 
 
 def out_dir(text: str) -> Path:
@@ -307,13 +308,14 @@ def out_dir(text: str) -> Path:
 
 
 def out_file(text: str) -> Path:
-    """An output file: not a folder, in a folder that exists or can be created, writable."""
+    """An output file (not an empty path, not a folder) in a folder that exists or can be made."""
+    _not_empty(text, "a file")
     path = Path(text).expanduser()
     if path.is_dir():
         raise argparse.ArgumentTypeError(f"{text!r} is a folder, not a file")
     if path.exists() and not os.access(path, os.W_OK):
         raise argparse.ArgumentTypeError(f"cannot write to {text!r}: the file is read-only")
-    out_dir(str(path.parent) if str(path.parent) else ".")
+    out_dir(str(path.parent))   # a bare name's parent is "."
     return path
 
 
@@ -388,12 +390,11 @@ def check_ground_truth_options(args: argparse.Namespace, parser: argparse.Argume
 def add_place_cells(parser: argparse.ArgumentParser, *, reanchor: bool = False) -> None:
     """``--place-cells learned|ground-truth`` and ``--[no-]reanchor`` (default ``reanchor``):
     the options every closed-loop task shares."""
-    parser.add_argument("--place-cells", choices=PLACE_CELLS, default="learned",
-                        action=Given,
+    parser.add_argument("--place-cells", choices=PLACE_CELLS, default="learned", action=Given,
                         help="learned from the robot's sensors, or Gaussian fields on the true "
                              "position (to measure what learning costs)")
     parser.add_argument("--reanchor", action=argparse.BooleanOptionalAction, default=reanchor,
                         help="after a lift, jump the learned place cells' reservoir to where "
                              "the robot's next readings match its exploration; it re-localises "
                              "in seconds, but the patrol kidnap chose a high-drive checkpoint "
-                             f"less often (default {'on' if reanchor else 'off'})")
+                             "less often")

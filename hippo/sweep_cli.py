@@ -29,34 +29,29 @@ def sweep_main(argv: Sequence[str]) -> int:
         "distributed (a LocalCluster unless --scheduler is given); resumable.",
         epilog="Options after -- go to every cell's scenario (e.g. -- --quick).")
     ap.add_argument("scenario", choices=sorted(SCENARIOS))
-    ap.add_argument("--seeds", type=seed_ranges, default=[0], help="e.g. 0-3 or 0,2,5 (default 0)")
-    ap.add_argument("--param", nargs="+", action="append", default=[], metavar=("NAME", "VALUE"),
+    ap.add_argument("--seeds", type=seed_ranges, default="0", help="e.g. 0-3 or 0,2,5")
+    ap.add_argument("--param", nargs="+", action="append", metavar=("NAME", "VALUE"),
                     help="a scenario option and its values, e.g. --param leak 0.05,0.15 "
                     "0.11,0.14 (repeat for more; the grid is every combination)")
-    ap.add_argument("--out", type=out_dir, default=None,
-                    help="output folder (default out/sweep-SCENARIO)")
-    ap.add_argument("--workers", type=integer(1, 1024), default=None,
+    ap.add_argument("--out", type=out_dir, help="output folder (default out/sweep-SCENARIO)")
+    ap.add_argument("--workers", type=integer(1, 1024),
                     help="LocalCluster worker processes (default: the free cores, i.e. the "
                     "usable cores less the load of other processes)")
-    ap.add_argument("--scheduler", default=None, help="address of an existing Dask scheduler")
+    ap.add_argument("--scheduler", help="address of an existing Dask scheduler")
     ap.add_argument("--retries", type=integer(0, 100), default=2,
                     help="extra attempts of a failing cell")
-    ap.add_argument("--metric", default=None, help="metric of the summary figure")
+    ap.add_argument("--metric", help="metric of the summary figure")
     ap.add_argument("--parquet", action="store_true", help="also write results.parquet")
-    a = ap.parse_args(argv)
-    if a.workers is not None and a.workers < 1:
-        ap.error(f"--workers must be >= 1, got {a.workers}")
-    if a.retries < 0:
-        ap.error(f"--retries must be >= 0, got {a.retries}")
+    a = ap.parse_args(argv)   # --workers and --retries are checked by their types
     params: dict[str, list[str]] = {}
     parser, _ = scenario_parser(a.scenario)
     known = {s.lstrip("-") for act in parser._actions for s in act.option_strings}
-    for item in a.param:
+    for item in a.param or []:   # (no default: "(default: [])" in the help said nothing)
         name, values = item[0].lstrip("-"), item[1:]
         if name in ("save", "load"):
             ap.error(f"--param {name}: a sweep runs every cell from scratch, into its own "
                      "folder (no snapshot is saved or loaded)")
-        if name not in known or name in ("out", "seed"):
+        if name not in known or name in ("out", "seed", "h", "help"):   # help: no cell runs
             ap.error(f"--param {name}: not an option of scenario {a.scenario!r} (choose from: "
                      f"{', '.join(sorted(known - {'out', 'seed', 'save', 'load', 'h', 'help'}))})")
         if not values:

@@ -6,7 +6,8 @@ Run: ``nice -n 10 python tools/mutation.py [MODULE ...] [--sample N --seed S] [-
 ``hippo/{motor,soft_recognition,waits}.py``, the sweep's and checkpoints'
 ``hippo/{sweep,sweep_cells,resume}.py``, and the recordings', the Gymnasium environment's and
 wrapper's, the progress bars' and the scenario runner's ``hippo/{sim/record,envs/robot,
-envs/wrappers,progress,runner}.py`` have their tests here too).
+envs/wrappers,progress,runner}.py``, and the command line's ``hippo/{cli,cli_args,sweep_cli,
+_threads}.py`` have their tests here too).
 Needs mutmut: ``pip install -e ".[mutation]"``.
 
 The tool builds a scratch copy of the project in ``--out`` (``hippo/``, ``tests/``, and
@@ -259,6 +260,17 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/progress.py": ["tests/test_progress_rules.py", "tests/test_progress.py"],
     # the scenario registry, its parsers and running one
     "hippo/runner.py": ["tests/test_runner_rules.py", "tests/test_cli.py"],
+    # the hippo command: its subcommands, the exit statuses, one-line errors
+    "hippo/cli.py": ["tests/test_cli_rules.py", "tests/test_cli.py",
+                     "tests/test_runner_rules.py"],
+    # the checked command-line arguments (argparse types), the parser's one-line errors
+    "hippo/cli_args.py": ["tests/test_cli_args_rules.py", "tests/test_cli.py",
+                          "tests/test_runner_rules.py"],
+    # hippo sweep's command line, its refusals before any cell runs, on a stand-in run_sweep
+    # (not tests/test_sweep.py, whose LocalCluster hangs in mutmut's forked workers)
+    "hippo/sweep_cli.py": ["tests/test_sweep_cli_rules.py", "tests/test_cli.py"],
+    # thread budgets: BLAS limits, free and usable cores, the worker pool
+    "hippo/_threads.py": ["tests/test_threads_rules.py", "tests/test_threads.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -987,6 +999,23 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      "equivalent: one tick has no differences to check"),
     ("hippo/sim/record.py", r"else \(np\.inf, -np\.inf\)", r"else \(np\.inf, \+np\.inf\)",
      "equivalent: no event time is infinite (load refuses one, the world's clock is finite)"),
+    ("hippo/_threads.py", r'getattr\(_local, "worker", False\)',
+     r'getattr\(_local, "worker", None\)', "equivalent: only tested for truth"),
+    ("hippo/cli_args.py", r'_items\(str\(text\), ","\) or \[""\]:', r'or \["XXXX"\]:',
+     "equivalent: any stand-in item is refused by _seed, in the same words"),
+    ("hippo/cli_args.py", r"raise ValueError\(text\)", r"raise ValueError\(None\)",
+     "equivalent: seed_ranges catches it and writes its own words"),
+    ("hippo/cli_args.py", r"_within\(v, lo, hi, False, False\)",
+     r"_within\(v, lo, hi, (None, False|False, None)\)", "equivalent: None is falsy, as False"),
+    ("hippo/cli_args.py", r'opts = ", ".join\("--" \+ key.replace\("_", "-"\)',
+     r'replace\("XX_XX", "-"\)|replace\("_", "XX-XX"\)',
+     "equivalent: no key of LEARNED_ONLY has an underscore"),
+    ("hippo/cli_args.py", r"lambda v: 0 < len\(v\) == len", r"lambda v: 0 <= len\(v\) == len",
+     "equivalent: _comma_list never hands over an empty list (_items gives None instead)"),
+    ("hippo/sweep_cli.py", r'opt = tok.split\("=", 1\)\[0\]', r'tok.split\("=", (2)?\)\[0\]',
+     "equivalent: the text before the first '=' is the same for any number of splits"),
+    ("hippo/sweep_cli.py", r'filterwarnings\("ignore", message="no summary figure"\)',
+     r'message="NO SUMMARY FIGURE"', "equivalent: filterwarnings matches case-insensitively"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the
