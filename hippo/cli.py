@@ -97,7 +97,9 @@ def _main(argv: list[str]) -> int:
         return 0
     cmd, rest = argv[0], argv[1:]
     if cmd == "list":
-        if rest:
+        if rest in (["-h"], ["--help"]):   # every command takes -h; list's help is the list
+            print("usage: hippo list   (the scenarios; hippo run NAME --help for the options)\n")
+        elif rest:
             top.error(f"'hippo list' takes no arguments, got {' '.join(rest)!r}")
         _list()
         return 0
@@ -144,7 +146,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             where = f": {exc.filename}" if exc.filename else ""
             msg = f"{exc.strerror}{where}"
         else:
-            msg = f"{type(exc).__name__}: {exc}"
+            msg = f"{type(exc).__name__}: {exc}" if str(exc).strip() else type(exc).__name__
         print(f"hippo: error: {_one_line(msg)} (HIPPO_DEBUG=1 shows where)", file=sys.stderr)
         return FAILURE
 

@@ -65,9 +65,12 @@ def sweep_main(argv: Sequence[str]) -> int:
     # options after -- go to every cell alike: none may set what the sweep sets per cell
     for tok in extra:
         opt = tok.split("=", 1)[0]
-        if not opt.startswith("--"):
+        if not opt.startswith("--") and opt != "-h":
             continue
         name = _full_name(opt.lstrip("-"), known)
+        if name in ("h", "help"):
+            ap.error(f"{opt} after --: a cell runs its scenario, not its help (hippo run "
+                     f"{a.scenario} --help lists the options)")
         if name in ("seed", "seeds", "out"):
             ap.error(f"{opt} after --: the sweep sets each cell's seed and output folder "
                      "(use hippo sweep's --seeds and --out)")

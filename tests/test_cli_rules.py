@@ -82,6 +82,21 @@ def test_the_refusals_word_for_word(capsys, runs):
 
 
 # --------------------------------------------------------------------------- list and help
+@pytest.mark.parametrize("flag", ["-h", "--help"])
+def test_list_help_is_its_usage_and_the_list(monkeypatch, capsys, flag):
+    monkeypatch.setattr(cli, "SCENARIOS", {"ab": "m.ab"})
+    monkeypatch.setattr(cli, "DESCRIPTIONS", {"ab": "two letters"})
+    assert cli.main(["list", flag]) == 0
+    assert capsys.readouterr().out == (
+        "usage: hippo list   (the scenarios; hippo run NAME --help for the options)\n\n"
+        "scenarios (hippo run NAME --help for the options of one):\n  ab  two letters\n")
+
+
+def test_list_help_with_more_words_is_refused(capsys, runs):
+    assert _stop(capsys, ["list", "-h", "x"]) == (
+        2, "hippo: error: 'hippo list' takes no arguments, got '-h x' (see hippo --help)\n")
+
+
 def test_the_list_in_two_columns(monkeypatch, capsys):
     monkeypatch.setattr(cli, "SCENARIOS", {"ab": "m.ab", "abcd": "m.abcd"})
     monkeypatch.setattr(cli, "DESCRIPTIONS", {"ab": "two letters"})
@@ -132,7 +147,9 @@ def test_run_help_is_the_usage_and_the_list(capsys, runs):
     (OSError("plain"), "OSError: plain"),
     (FileNotFoundError(errno.ENOENT, "No such file or directory", ""),
      "No such file or directory"),
-    (ValueError(""), "ValueError:"),
+    (ValueError(""), "ValueError"),          # no message: the kind alone, no dangling colon
+    (ValueError(" \n"), "ValueError"),
+    (AssertionError(), "AssertionError"),
 ])
 def test_a_failure_is_one_line_and_status_1(monkeypatch, capsys, exc, line):
     def broken(name: str, argv: list[str]) -> None:

@@ -213,6 +213,10 @@ def test_a_cell_its_scenario_refuses_is_a_usage_error(monkeypatch, stand_in, tmp
     (["--", "--load=x"], "--load after --: every cell would run the snapshot's robot, made with "
                          "the snapshot's seed, whatever the cell's seed (a sweep runs each cell "
                          "from scratch)"),
+    *[(["--", "--quick", opt], f"{opt} after --: a cell runs its scenario, not its help "
+       "(hippo run stand-in --help lists the options)") for opt in ("--help", "-h", "--he")],
+    (["--", "--help=1"], "--help after --: a cell runs its scenario, not its help (hippo run "
+                         "stand-in --help lists the options)"),
     (["--param", "level", "1", "--", "--lev", "2"],
      "--lev after -- is also a --param of the sweep: give its values there"),
     (["--metric", "seconds"], "--metric seconds: a column the sweep writes itself (its cells' "
