@@ -62,7 +62,8 @@ class BrainParams:
     cycle_visits, cycle_window, cycle_explore: habituation. Entering the same place
         ``cycle_visits`` times within ``cycle_window`` s while a drive is active means the map
         is leading the robot in circles (noisy place states can make transitions point back
-        and forth); it then explores for ``cycle_explore`` s.
+        and forth); it then explores for ``cycle_explore`` s (``cycle_visits`` >= 1, the two
+        times >= 0).
     coactive: soft recognition of a wanted stop's place: while moving with an active drive
         whose stop is bound to place ``C``, the robot approaches that stop once ``C``'s activity
         reaches this fraction of the most active place's, as if it had entered ``C`` (0
@@ -225,6 +226,9 @@ class BrainParams:
         check_int("heading_sectors", self.heading_sectors, lo=1)
         if self.proprio_ticks < 1:
             raise ValueError(f"proprio_ticks must be >= 1, got {self.proprio_ticks}")
+        check_int("cycle_visits", self.cycle_visits, lo=1)
+        check_positive("cycle_window", self.cycle_window, allow_zero=True)
+        check_positive("cycle_explore", self.cycle_explore, allow_zero=True)
         check_positive("settle_time", self.settle_time, allow_zero=True)
         check_positive("turn_limit", self.turn_limit)
         check_positive("release_distance", self.release_distance, allow_zero=True)

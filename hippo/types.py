@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 import operator
+from collections.abc import Mapping, Set
 from dataclasses import dataclass
 from enum import Enum, IntEnum
 from typing import Any
@@ -63,7 +64,13 @@ def check_state_id(name: str, state: object) -> int:
 
 
 def check_transition(name: str, value: Any) -> Transition:
-    """Return ``value`` as an ``(a, b)`` tuple of state ids, or raise ``ValueError``."""
+    """Return ``value`` as an ``(a, b)`` tuple of state ids, or raise ``ValueError``.
+
+    A set or a mapping is no pair even with two ids (a set has no order: ``{2, 1}`` unpacks
+    as ``1, 2``; a dict unpacks its keys), nor is a string.
+    """
+    if isinstance(value, str | bytes | Set | Mapping):
+        raise ValueError(f"{name} must be a pair (a, b) of state ids, got {value!r}")
     try:
         a, b = value
     except (TypeError, ValueError):

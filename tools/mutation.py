@@ -6,8 +6,10 @@ Run: ``nice -n 10 python tools/mutation.py [MODULE ...] [--sample N --seed S] [-
 ``hippo/{motor,soft_recognition,waits}.py``, the sweep's and checkpoints'
 ``hippo/{sweep,sweep_cells,resume}.py``, and the recordings', the Gymnasium environment's and
 wrapper's, the progress bars' and the scenario runner's ``hippo/{sim/record,envs/robot,
-envs/wrappers,progress,runner}.py``, and the command line's ``hippo/{cli,cli_args,sweep_cli,
-_threads}.py`` have their tests here too).
+envs/wrappers,progress,runner}.py``, the command line's ``hippo/{cli,cli_args,sweep_cli,
+_threads}.py``, and the brain's and state layer's parameters, a tick's records, the
+shared vocabulary and the papers' arenas, ``hippo/{brain_params,
+perception/state_params,ticks,types,sim/arenas}.py``, have their tests here too).
 Needs mutmut: ``pip install -e ".[mutation]"``.
 
 The tool builds a scratch copy of the project in ``--out`` (``hippo/``, ``tests/``, and
@@ -271,6 +273,21 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     "hippo/sweep_cli.py": ["tests/test_sweep_cli_rules.py", "tests/test_cli.py"],
     # thread budgets: BLAS limits, free and usable cores, the worker pool
     "hippo/_threads.py": ["tests/test_threads_rules.py", "tests/test_threads.py"],
+    # the brain's parameters and their checks
+    "hippo/brain_params.py": ["tests/test_brain_params_rules.py", "tests/test_brain.py",
+                              "tests/test_brain_rules.py", "tests/test_head_direction.py"],
+    # the state layer's parameters, keys, events and event-input checks
+    "hippo/perception/state_params.py": ["tests/perception/test_state_params_rules.py",
+                                         "tests/perception/test_states.py",
+                                         "tests/perception/test_state_levels_rules.py"],
+    # the records of one brain tick
+    "hippo/ticks.py": ["tests/test_ticks_rules.py", "tests/test_motor.py", "tests/test_brain.py"],
+    # the shared vocabulary: state ids, transitions, kinds, modes, angles, observations
+    "hippo/types.py": ["tests/test_types_rules.py", "tests/test_types.py",
+                       "tests/test_observation_check.py"],
+    # the papers' arenas and the registry
+    "hippo/sim/arenas.py": ["tests/sim/test_arenas_rules.py", "tests/sim/test_arena_rules.py",
+                            "tests/sim/test_world.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -1016,6 +1033,23 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      "equivalent: the text before the first '=' is the same for any number of splits"),
     ("hippo/sweep_cli.py", r'filterwarnings\("ignore", message="no summary figure"\)',
      r'message="NO SUMMARY FIGURE"', "equivalent: filterwarnings matches case-insensitively"),
+    ("hippo/types.py", r"if type\(state\) is int and 0 <= state <= MAX_STATE_ID:",
+     r"type\(None\) is int|1 <= state|0 < state|state < MAX_STATE_ID", "equivalent: the fast "
+     "path only; the general path returns the same int for a plain int in [0, 2**63 - 1]"),
+    ("hippo/perception/state_params.py", r"if type\(value\) is int and value >= 0:",
+     r"type\(None\) is int|value > 0:|value >= 1:", "equivalent: the fast path only; the "
+     "general path gives the same None for 0 and the same int for a plain int > 0"),
+    ("hippo/perception/state_params.py",
+     r"if value is None or value is True or value is False:",
+     r"value is True and value is False|value is False or value is False|"
+     r"value is True or value is True", "equivalent: the fast path only; a bool it lets by "
+     "is returned as bool(value), the same object"),
+    ("hippo/sim/arenas.py", r"b\.start\((120, 15|cell / 2, cell / 2), 0\.0\)", r", \)$",
+     "equivalent: the builder's start heading defaults to 0.0"),
+    ("hippo/sim/arenas.py", r'b\.zone\("goal", \(0, 70, 24, 82\), colour=1\)', r"82\), \)$",
+     "equivalent: a zone's colour defaults to 1"),
+    ("hippo/sim/arenas.py", r"for (i|j) in range\(n \+ 1\):", r"range\(n \+ 2\)",
+     "equivalent: the step past the grid's end finds no wall (i < n fails) and no run open"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the

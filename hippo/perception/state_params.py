@@ -133,6 +133,8 @@ def _flag(name: str, value: object) -> bool | None:
         return value  # type: ignore[return-value]
     if isinstance(value, (bool, np.bool_)):
         return bool(value)
+    if isinstance(value, str | bytes) or np.ndim(value) != 0:  # float() would read "1", [1]
+        raise ValueError(f"{name} must be a boolean (or 0/1), got {value!r}")
     v = float(check_finite(name, value))
     if v not in (0.0, 1.0):
         raise ValueError(f"{name} must be a boolean (or 0/1), got {value!r}")
@@ -144,7 +146,7 @@ def _colour(value: object) -> int | None:
         return None
     if type(value) is int and value >= 0:  # the usual case, checked without numpy
         return None if value == 0 else value
-    if isinstance(value, (bool, np.bool_)):
+    if isinstance(value, bool | np.bool_ | str | bytes) or np.ndim(value) != 0:
         raise ValueError(f"colour must be an integer colour id, got {value!r}")
     v = float(check_finite("colour", value))
     if v != int(v) or v < 0:

@@ -13,6 +13,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from hippo._checks import check_int, check_positive, check_seed
 from hippo.sim.arena import Arena
 from hippo.sim.builder import ArenaBuilder
 
@@ -51,7 +52,9 @@ def two_rooms() -> Arena:
 
 
 def _perfect_maze(n: int, seed: int) -> set[tuple[tuple[int, int], tuple[int, int]]]:
-    """Passages of a perfect maze on an n × n grid (randomised depth-first search)."""
+    """Passages of a perfect maze on an n × n grid (randomised depth-first search from cell
+    (0, 0): the unvisited neighbours of the cell on top of the stack, in the order +x, -x, +y,
+    -y, one drawn with ``integers(k)`` from ``default_rng(seed)``)."""
     rng = np.random.default_rng(seed)
     seen = {(0, 0)}
     stack = [(0, 0)]
@@ -76,9 +79,11 @@ def maze_e1(cell: float = 40.0, n: int = 8, seed: int = 1) -> Arena:
     Corridors are ``cell`` = 40 cm wide, comparable to the 17-ray robot's 50 cm range, so the
     robot sees the walls of the corridor it is in and not much further. Being a perfect maze
     (a tree), following one wall visits every cell. Locations are numbered row by row from the
-    bottom-left cell.
+    bottom-left cell. ``cell`` > 0 cm, ``n`` >= 1 and ``seed`` (the maze's) are checked.
     """
-    passages = _perfect_maze(n, seed)
+    cell = check_positive("cell", cell)
+    n = check_int("n", n, lo=1)
+    passages = _perfect_maze(n, check_seed("seed", seed))
     size = n * cell
     b = ArenaBuilder("maze-e1", size, size).outer_walls()
     # vertical walls between (i, j) and (i+1, j); merge runs along each grid line
@@ -114,7 +119,7 @@ def goal_arena() -> Arena:
     rays see nothing in an open room, so a central block turns the arena into four corridors of
     different widths (west 24 cm, south 30 cm, east 36 cm, north 28 cm), narrow enough for the
     rays to reach both walls, with chamfered south-west and north-east corners, a fin in the
-    south corridor, a notch in the block's south face and a bump on its east face: every
+    south corridor and a notch (6 cm deep) in each of the block's south and east faces: every
     stretch looks different within sensor range. The goal zone (colour 1) spans the west
     corridor and is 12 cm long, so the robot crosses it at its default speed (5 cm/s) in about
     2.4 s, well under the 7 s reward delay.
