@@ -7,6 +7,7 @@ these two functions turn what a caller gives into that key or raise ``ValueError
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Set
 from typing import Any
 
 from hippo.types import Transition, check_state_id
@@ -21,7 +22,12 @@ def state_id(value: Any, name: str = "state") -> int:
 
 
 def as_transition(t: Any) -> Transition:
-    """Return ``t`` as an ``(a, b)`` tuple of ints, or raise ``ValueError``."""
+    """Return ``t`` as an ``(a, b)`` tuple of ints, or raise ``ValueError``.
+
+    A set or a mapping is no pair even with two ids (``{2, 1}`` unpacks as ``1, 2``, a dict
+    as its keys), nor is a string (``"12"`` unpacks as two characters)."""
+    if type(t) is not tuple and isinstance(t, str | bytes | Set | Mapping):
+        raise ValueError(f"a transition is a pair (a, b) of state ids, got {t!r}")
     try:
         a, b = t
     except (TypeError, ValueError):

@@ -38,7 +38,8 @@ def test_a_transition_is_a_pair_of_state_ids_named_by_its_end():
         got = as_transition(t)
         assert got == (int(t[0]), int(t[1])) and type(got) is tuple
         assert all(type(s) is int for s in got)
-    for bad in (5, None, (1,), (1, 2, 3), [], 1.5):
+    for bad in (5, None, (1,), (1, 2, 3), [], 1.5, {2, 1}, frozenset({0, 3}), {1: 0, 2: 0},
+                "12", b"12"):
         with refused(f"a transition is a pair (a, b) of state ids, got {bad!r}"):
             as_transition(bad)
     with refused("transition start state must be a state id >= 0, got -1"):
@@ -49,6 +50,6 @@ def test_a_transition_is_a_pair_of_state_ids_named_by_its_end():
         as_transition((1.0, 2))
     with refused("transition end state must be an integer state id, got True"):
         as_transition((1, True))
-    # two characters unpack as a pair, but a character is no state id
-    with refused("transition start state must be an integer state id, got '1'"):
-        as_transition("12")
+    # a pair of a str subclass is still refused up front (not through its characters)
+    with refused("a transition is a pair (a, b) of state ids, got 'ab'"):
+        as_transition(type("Text", (str,), {})("ab"))
