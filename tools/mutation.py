@@ -9,7 +9,9 @@ wrapper's, the progress bars' and the scenario runner's ``hippo/{sim/record,envs
 envs/wrappers,progress,runner}.py``, the command line's ``hippo/{cli,cli_args,sweep_cli,
 _threads}.py``, and the brain's and state layer's parameters, a tick's records, the
 shared vocabulary and the papers' arenas, ``hippo/{brain_params,
-perception/state_params,ticks,types,sim/arenas}.py``, have their tests here too).
+perception/state_params,ticks,types,sim/arenas}.py``, and the scenarios' helpers,
+``hippo/scenarios/{_common,_meta_checks,_selection,_patrol_lesson,_two_rooms_report}.py``,
+have their tests here too).
 Needs mutmut: ``pip install -e ".[mutation]"``.
 
 The tool builds a scratch copy of the project in ``--out`` (``hippo/``, ``tests/``, and
@@ -288,6 +290,21 @@ DEFAULT_TESTS: dict[str, list[str]] = {
     # the papers' arenas and the registry
     "hippo/sim/arenas.py": ["tests/sim/test_arenas_rules.py", "tests/sim/test_arena_rules.py",
                             "tests/sim/test_world.py"],
+    # the scenarios' helpers on hand-made inputs and stand-ins (the scenarios' own tests are
+    # closed-loop runs): the output folder, metrics file, seeds and recording cache
+    "hippo/scenarios/_common.py": ["tests/scenarios/test_common_rules.py",
+                                   "tests/scenarios/test_cache.py", "tests/test_runner_rules.py"],
+    # a saved robot's meta checked field by field
+    "hippo/scenarios/_meta_checks.py": ["tests/scenarios/test_meta_checks_rules.py",
+                                        "tests/scenarios/test_saved_meta.py"],
+    # --select: the leak pair chosen from the recording, its summary over seeds
+    "hippo/scenarios/_selection.py": ["tests/scenarios/test_select_setting_rules.py",
+                                      "tests/perception/test_selection.py"],
+    # the patrol scenarios' options, the saved lesson's checks, save, load and teach
+    "hippo/scenarios/_patrol_lesson.py": ["tests/scenarios/test_patrol_lesson_rules.py",
+                                          "tests/scenarios/test_saved_meta.py"],
+    # the two-rooms evaluation, headline, sweep and fault conditions and their summaries
+    "hippo/scenarios/_two_rooms_report.py": ["tests/scenarios/test_two_rooms_report_rules.py"],
 }
 
 # run for every module: the bad-input table and the loaders' fuzz tests check the validation
@@ -1050,6 +1067,53 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      "equivalent: a zone's colour defaults to 1"),
     ("hippo/sim/arenas.py", r"for (i|j) in range\(n \+ 1\):", r"range\(n \+ 2\)",
      "equivalent: the step past the grid's end finds no wall (i < n fails) and no run open"),
+    ("hippo/scenarios/_common.py", r'parser.add_argument\("--cache", type=out_dir, default=None,',
+     r"(?s)^(?!.*default=)", "equivalent: argparse's default is None"),
+    ("hippo/scenarios/_common.py", r'getattr\(args, "quick", False\)', r'"quick", None\)',
+     "equivalent: only tested for truth (bool)"),
+    ("hippo/scenarios/_common.py", r'getattr\(args, f"\{dest\}_given", False\)',
+     r'_given", None\)', "equivalent: only tested for truth"),
+    ("hippo/scenarios/_patrol_lesson.py", r'parser.add_argument\("--[\w-]+", (type|choices)=.*'
+     r"default=None,", r"(?s)^(?!.*default=)", "equivalent: argparse's default is None"),
+    ("hippo/scenarios/_patrol_lesson.py", r'meta\["quick"\] = bool\(getattr\(args, "quick", '
+     r"False\)\)", r'"quick", None\)', "equivalent: bool(None) is False"),
+    ("hippo/scenarios/_selection.py", r'paper_acc = float\("nan"\)', r'float\("NAN"\)',
+     "equivalent: float() reads 'NAN' as nan"),
+    ("hippo/scenarios/_selection.py",
+     r"diff = np.asarray\(picked, float\) - np.asarray\(paper, float\)",
+     r"np.asarray\((picked|paper), (None)?\)",
+     "equivalent: the accuracies are numbers (nan for none); their difference is the same"),
+    ("hippo/scenarios/_two_rooms_report.py", r'float\("nan"\)', r'float\("NAN"\)',
+     "equivalent: float() reads 'NAN' as nan"),
+    ("hippo/scenarios/_two_rooms_report.py", r"slice\(0, n_train\)",
+     r"slice\((None, )?n_train\)", "equivalent: a slice from None (or of one bound) starts at 0"),
+    ("hippo/scenarios/_two_rooms_report.py", r"slice\(n_train, len\((U|Y|rec)\)\)",
+     r"slice\(n_train, None\)", "equivalent: a slice to None ends at the length sliced"),
+    ("hippo/scenarios/_two_rooms_report.py", r"rcond=None\)\[0\]", r"^\s*\)\[0\]",
+     "equivalent: rcond=None is numpy's default (numpy >= 2.0)"),
+    ("hippo/scenarios/_two_rooms_report.py", r"np.where\(in_b\[tr\]\[in_room\[tr\]\], 1.0, -1.0\)",
+     r", (2.0, -1.0|1.0, -2.0)\)",
+     "equivalent: with X's column of ones, targets a s + b give the read-out a (X w) + b "
+     "(a > 0), whose best threshold splits the same ticks"),
+    ("hippo/scenarios/_two_rooms_report.py", r"rng.choice\(n_sensors, k, replace=False\)",
+     r"replace=None", "equivalent: numpy takes None as False"),
+    ("hippo/scenarios/_two_rooms_report.py", r"rgb = im.cmap\(im.norm\(Z\[i, j\]\)\)\[:3\]",
+     r"\[:4\]", "equivalent: the luma reads rgb[0], rgb[1] and rgb[2] only"),
+    ("hippo/scenarios/_two_rooms_report.py", r'names = np.array\(\[\*rec.region_names, "none"\]\)',
+     r'"(XXnoneXX|NONE)"', "equivalent: the name of 'no region' is none of room_a, room_b, "
+                           "corridor, the names compared"),
+    ("hippo/scenarios/_two_rooms_report.py", r"fig.colorbar\(im, ax=ax, shrink=0.85\)",
+     r"colorbar\(None,", "equivalent: without a mappable matplotlib takes the figure's current "
+                          "image, the one just drawn"),
+    ("hippo/scenarios/_two_rooms_report.py", r"fig.colorbar\(im, ax=ax, shrink=0.85\)",
+     r"colorbar\(im, (ax=None, )?shrink", "equivalent: without ax matplotlib takes the image's "
+                                           "own axes, ax"),
+    ("hippo/scenarios/_two_rooms_report.py", r"^\s*plt.close\(fig\)", r"plt.close\(None\)",
+     "equivalent: plt.close(None) closes the current figure, the one just made"),
+    ("hippo/scenarios/_two_rooms_report.py", r"axes\[0\].plot\(range\(4\), ys, ls,",
+     r"plot\(ys, ls,", "equivalent: plot(y) draws y at x = 0, 1, 2, 3"),
+    ("hippo/scenarios/_two_rooms_report.py", r"0.114 \* rgb\[2\] < 0.55", r"rgb\[2\] <= 0.55",
+     "equivalent: differs only when a cell's luma is 0.55 to the last bit"),
 ]
 
 # The torch backend's mutants: its tests skip without torch, so they are left out of the

@@ -140,7 +140,12 @@ def parse_seeds(text: str) -> list[int] | int:
     try:
         return seed_ranges(s)
     except argparse.ArgumentTypeError as e:
-        raise argparse.ArgumentTypeError(f"--seeds takes a count (5) or {e}") from None
+        # only a malformed list is "a count or seeds ..."; too many or repeated seeds are
+        # said as such ("--seeds takes a count (5) or '1,1' repeats a seed" read as nonsense)
+        why = str(e)
+        raise argparse.ArgumentTypeError(f"--seeds takes a count (5) or {why}"
+                                         if why.startswith("seeds are ") else
+                                         f"--seeds: {why}") from None
 
 
 def seed_list(args: argparse.Namespace) -> list[int]:

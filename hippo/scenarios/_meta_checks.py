@@ -18,8 +18,14 @@ def field(key: str) -> str:
 
 
 def finite(v: Any) -> bool:
-    """A finite int or float (not a bool)."""
-    return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
+    """A finite int or float (not a bool); an integer past the floats' range (JSON holds any)
+    is not (math.isfinite would raise OverflowError on it)."""
+    if not isinstance(v, int | float) or isinstance(v, bool):
+        return False
+    try:
+        return math.isfinite(v)
+    except OverflowError:
+        return False
 
 
 def bad_field(meta: dict, key: str, want: str) -> ValueError:
@@ -35,7 +41,11 @@ def check_whole(meta: dict, key: str, bounds: tuple[int, int]) -> None:
 
 def check_number(meta: dict, key: str, bounds: tuple[float, float]) -> None:
     """``meta[key]`` is a finite number within ``bounds``."""
-    check_range(field(key), check_real(field(key), meta[key]), *bounds)
+    v = meta[key]
+    if isinstance(v, int) and not isinstance(v, bool) and not finite(v):
+        # past the floats' range: out of bounds (check_real's float() would overflow)
+        raise ValueError(f"{field(key)} must lie in [{bounds[0]}, {bounds[1]}], got {v!r}")
+    check_range(field(key), check_real(field(key), v), *bounds)
 
 
 def check_option(meta: dict, key: str, choices: tuple[Any, ...]) -> None:

@@ -151,7 +151,8 @@ def check_course_args(args: argparse.Namespace, parser: argparse.ArgumentParser)
     try:
         check_patrol(args.arena, cps, args.waits, getattr(args, "route", "auto"))
     except ValueError as e:
-        which = "--waits" if "waits" in str(e).split(" for ")[0] else "--checkpoints"
+        # "got 2 waits for 3 checkpoints", "wait(s) 1.5 s: ..." (not "--checkpoints: wait(s)")
+        which = "--waits" if "wait" in str(e).split(" for ")[0] else "--checkpoints"
         parser.error(f"argument {which}: {e}")
     args.checkpoints = [tuple(c) for c in cps]
 
@@ -194,7 +195,7 @@ def _check_meta(meta: dict) -> None:
     """Raise ``ValueError`` naming the field unless a saved lesson's meta is one ``--save``
     could have written: the options within the command line's own bounds, and a course
     :func:`check_patrol` accepts (so a hand-edited snapshot is refused before any work)."""
-    if meta["arena"] not in ARENA_CHECKPOINTS:
+    if not isinstance(meta["arena"], str) or meta["arena"] not in ARENA_CHECKPOINTS:
         raise ValueError(f"unknown arena {meta['arena']!r} in the snapshot")
     check_whole(meta, "seed", (0, MAX_SEED))
     check_whole(meta, "units", UNITS)
