@@ -9,6 +9,7 @@ correlation with the labelled accuracy is reported next to the choice."""
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -98,7 +99,10 @@ def selection_summary(rows: list[dict[str, Any]], seeds: list[int],
         "picked_mean": mean_sd(list(picked))[0], "paper_mean": mean_sd(list(paper))[0],
         "picked_minus_paper_worst_seed": float(np.nanmin(diff)),
         "groups": groups,
-        "picked_minus_paper_worst_group": float(min(g["picked_minus_paper"] for g in groups)),
+        # the worst scored group, whatever the order (a group with no scored seed is nan)
+        "picked_minus_paper_worst_group": min(
+            (g["picked_minus_paper"] for g in groups if not math.isnan(g["picked_minus_paper"])),
+            default=math.nan),
         "oracle_accuracy_mean": mean_sd([r["best_accuracy_in_sweep"] for r in rows])[0],
         "runs": rows,
     }

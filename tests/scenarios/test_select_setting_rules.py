@@ -231,3 +231,21 @@ def test_the_scenarios_own_fits_replace_the_sweeps_and_nan_is_left_out():
     assert s["picked_accuracy"] == [0.0, 0.0] and s["paper_accuracy"] == [0.0, 0.0]
     s = S.selection_summary(rows, [3, 4], paper=[0.9, 0.9])
     assert s["picked_accuracy"] == [0.0, 0.0] and s["paper_accuracy"] == [0.0, 0.0]
+
+
+@pytest.mark.parametrize("unscored_first", [True, False])
+def test_the_worst_group_is_the_worst_scored_one_in_any_order(unscored_first):
+    # two groups of five: one with no scored seed (nan), one whose picked - paper is 0.1;
+    # the worst group is 0.1 whichever comes first (Python's min gave nan or 0.1 by order)
+    nan5, scored5 = [math.nan] * 5, [0.8] * 5
+    picked = nan5 + scored5 if unscored_first else scored5 + nan5
+    paper = [math.nan] * 5 + [0.7] * 5 if unscored_first else [0.7] * 5 + [math.nan] * 5
+    rows = [_row(0.0, 0.0, 0.1, 0.9) for _ in range(10)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)   # nanmean of the all-nan group
+        s = S.selection_summary(rows, list(range(10)), picked=picked, paper=paper)
+    assert s["picked_minus_paper_worst_group"] == pytest.approx(0.1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        s = S.selection_summary(rows[:5], list(range(5)), picked=nan5, paper=nan5)
+    assert math.isnan(s["picked_minus_paper_worst_group"])
