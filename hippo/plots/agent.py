@@ -123,11 +123,13 @@ def plot_place_preference(out: Path, arena: Arena, agent: Agent,
 
 
 def plot_waits_table(rows: Sequence[Mapping[str, Any]]) -> tuple[Figure, Axes]:
-    """HIREL Table I as a figure: learned wait vs each reproduced wait, per checkpoint."""
+    """HIREL Table I as a figure: learned wait vs each reproduced wait, per checkpoint (a
+    learned wait of None, none learned, is left blank; 0 s is drawn)."""
     fig, ax = plt.subplots(figsize=(6, 3.6), layout="constrained")
     for k, r in enumerate(rows):
         rep = r["reproduced_waits_s"]
-        ax.plot([k - 0.25, k + 0.25], [r["learned_wait_s"] or np.nan] * 2, "k-", lw=2,
+        learned = np.nan if r["learned_wait_s"] is None else r["learned_wait_s"]
+        ax.plot([k - 0.25, k + 0.25], [learned] * 2, "k-", lw=2,
                 label="learned" if k == 0 else None)
         ax.plot(np.full(len(rep), k) + np.linspace(-0.15, 0.15, max(len(rep), 1))[:len(rep)],
                 rep, "o", color="tab:blue", label="reproduced" if k == 0 else None)

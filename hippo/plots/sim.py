@@ -20,13 +20,16 @@ ZONE_COLOURS = ["none", "tab:red", "tab:green", "tab:blue", "tab:orange", "tab:p
 
 def draw_arena(arena: Arena, ax: Axes | None = None, *, locations: bool = True,
                labels: bool = False) -> tuple[Figure, Axes]:
-    """Walls (black), coloured zones, and the labelled reference locations (grey triangles)."""
+    """Walls (black), coloured zones, and the labelled reference locations (grey triangles).
+
+    A zone's colour 1, 2, ... takes ZONE_COLOURS[1:] in turn (colour 6 red again, as 1)."""
     if ax is None:
         _, ax = plt.subplots(figsize=(6, 6 * arena.height / arena.width))
     for z in arena.zones:
         x0, y0, x1, y1 = z.rect
-        ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, alpha=0.35,
-                               color=ZONE_COLOURS[z.colour % len(ZONE_COLOURS)], lw=0))
+        k = z.colour
+        colour = ZONE_COLOURS[1 + (k - 1) % (len(ZONE_COLOURS) - 1)] if k else "none"
+        ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, alpha=0.35, color=colour, lw=0))
     segs = [[a, b] for a, b in arena.walls]
     ax.add_collection(LineCollection(segs, colors="k", linewidths=2))
     if locations and len(arena.locations):

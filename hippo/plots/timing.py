@@ -8,7 +8,7 @@
 * :func:`plot_reproduction` — learned versus reproduced waits (the benchmark, HIREL Table I).
 
 Inputs are :class:`hippo.timing.trials.TrialTrace` objects (or anything with ``tau``,
-``prediction``, ``end`` and ``fired``).
+``prediction``, ``delay_over``, ``end`` and ``fired``).
 """
 
 from __future__ import annotations
@@ -95,7 +95,7 @@ def plot_fig6(rewarded: TrialTrace, extinction: TrialTrace, delay: float,
 
 def plot_reproduction(learned: Sequence[float], reproduced: Sequence[Sequence[float]], *,
                       reference: Mapping[float, tuple[float, float]] | None = None,
-                      title: str = "") -> Figure:
+                      title: str = "") -> tuple[Figure, np.ndarray]:
     """Reproduced waits (mean +- sd over trials) against the learned delays, log-log.
 
     reference: optional ``{learned: (mean, sd)}`` of another system (e.g. HIREL Table I).
