@@ -17,6 +17,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
+from hippo._checks import check_int
 from hippo.plots.sim import draw_arena
 
 if TYPE_CHECKING:
@@ -98,6 +99,7 @@ def plot_units_over_arena(arena: Arena, fields: np.ndarray, extent: tuple[float,
                           title: str = "") -> tuple[Figure, np.ndarray]:
     """Small multiples: each unit's mean response on a spatial grid (``fields`` (k, ny, nx))."""
     units = list(range(fields.shape[0])) if units is None else list(units)
+    ncols = check_int("ncols", ncols, lo=1)
     nrows = max(1, int(np.ceil(len(units) / ncols)))
     fig, axes = plt.subplots(nrows, ncols, figsize=(1.6 * ncols, 1.6 * nrows),
                              layout="constrained", squeeze=False)

@@ -11,6 +11,8 @@ from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 
+from hippo._checks import check_int
+
 if TYPE_CHECKING:
     from hippo.sim.arena import Arena
     from hippo.sim.record import Recording
@@ -69,6 +71,10 @@ def plot_sensor_strip(rec: Recording, start: int = 0, stop: int | None = None,
                       ax: Axes | None = None) -> tuple[Figure, Axes]:
     """Sensor readings over time as an image (rows: sensors, dark = near a wall)."""
     stop = len(rec) if stop is None else stop
+    if len(rec) == 0:
+        raise ValueError("the recording has no ticks to draw")
+    start = check_int("start", start, lo=0, hi=len(rec) - 1)
+    stop = check_int("stop", stop, lo=start + 1, hi=len(rec))
     if ax is None:
         _, ax = plt.subplots(figsize=(10, 3), layout="constrained")  # nothing clipped
     S = rec.sensors[start:stop].T

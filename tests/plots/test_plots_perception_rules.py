@@ -9,6 +9,8 @@ to the 95th percentile of the kept outputs (at least threshold + 1e-6).
 
 from __future__ import annotations
 
+import re
+
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
@@ -244,3 +246,19 @@ def test_sfa_units_over_time_and_over_the_arena():
     assert offsets(axes[0, 0].collections[0]) == [[5, 1], [6, 2], [7, 2]]
     (tw,) = [a for a in axes[0, 0].figure.axes if a not in set(axes.ravel())]
     assert tw.lines[0].get_xdata().tolist() == [5.0, 6.0, 7.0]
+
+
+@pytest.mark.parametrize("ncols, message", [
+    (0, "ncols must be an integer >= 1, got 0"),
+    (-2, "ncols must be an integer >= 1, got -2"),
+    (2.0, "ncols must be an integer, got 2.0 (float)"),
+    (True, "ncols must be an integer, got True (a bool)"),
+])
+def test_small_multiples_need_a_column_or_more_word_for_word(ncols, message):
+    # a ZeroDivisionError (or a float count of columns) before; no figure is left open
+    fields = np.zeros((3, 2, 2))
+    with pytest.raises(ValueError, match="^" + re.escape(message) + "$"):
+        plot_units_over_arena(ARENA, fields, (0, 1, 0, 1), ncols=ncols)
+    assert plt.get_fignums() == []
+    _, axes = plot_units_over_arena(ARENA, fields, (0, 1, 0, 1), ncols=1)
+    assert axes.shape == (3, 1)

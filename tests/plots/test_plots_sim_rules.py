@@ -170,3 +170,21 @@ def test_a_window_of_the_sensor_strip_into_a_given_axes():
     assert im.get_extent() == [2.0, 3.0, 2.5, -0.5]      # t[2] = 2.0 to t[4] = 3.0
     (im1,) = plot_sensor_strip(rec, 1)[1].images         # stop defaults to len(rec)
     assert im1.get_extent() == [1.5, 3.5, 2.5, -0.5]
+
+
+@pytest.mark.parametrize("start, stop, message", [
+    (5, None, "start must be an integer in [0, 4], got 5"),
+    (-1, None, "start must be an integer in [0, 4], got -1"),
+    (2, 2, "stop must be an integer in [3, 5], got 2"),
+    (0, 6, "stop must be an integer in [1, 5], got 6"),
+    (1.0, None, "start must be an integer, got 1.0 (float)"),
+])
+def test_a_sensor_strip_window_outside_the_recording_is_refused_word_for_word(start, stop,
+                                                                               message):
+    # numpy's IndexError (or an empty image) before; the window's edges 0 and len(rec) are fine
+    rec = recording(5)
+    with pytest.raises(ValueError, match="^" + re.escape(message) + "$"):
+        plot_sensor_strip(rec, start, stop)
+    assert plt.get_fignums() == []
+    plot_sensor_strip(rec, 4, 5)
+    plot_sensor_strip(rec, 0, 5)
