@@ -186,5 +186,5 @@ def test_a_sensor_strip_window_outside_the_recording_is_refused_word_for_word(st
     with pytest.raises(ValueError, match="^" + re.escape(message) + "$"):
         plot_sensor_strip(rec, start, stop)
     assert plt.get_fignums() == []
-    plot_sensor_strip(rec, 4, 5)
+    plot_sensor_strip(rec, 3, 5)
     plot_sensor_strip(rec, 0, 5)
