@@ -173,10 +173,11 @@ def _check_meta(meta: dict) -> None:
 
 
 def run(args: argparse.Namespace) -> dict:
-    out = prepare_out(args.out)
-    seed = int(args.seed)
+    # refused before prepare_out, which removes the last run's metrics.json
     if args.delay <= 0 or not math.isfinite(args.delay):
         raise SystemExit(f"--delay must be a positive number of seconds, got {args.delay}")
+    out = prepare_out(args.out)
+    seed = int(args.seed)
     quick = bool(args.quick)
     loaded = getattr(args, "loaded", None)
     if loaded is None and getattr(args, "load", None) is not None:

@@ -60,6 +60,7 @@ from hippo.scenarios._common import (
     add_cache_argument,
     add_seeds_argument,
     check_leak_groups,
+    check_sfa_inputs,
     mean_sd,
     only_with,
     parse_leak,
@@ -105,6 +106,8 @@ CORRIDOR_UNITS = 4
 #: the test part (the last eighth) must hold the first kidnapping and the return (tick 400)
 MIN_TICKS = 4000
 CORRIDOR_LEAK = (0.11, 0.14)
+#: --quick's reservoir size (at most)
+QUICK_NEURONS = 120
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -167,12 +170,14 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
                      "(ICA rotates the SFA outputs)")
     only_with(args, parser, "select_units", "select", "the unit counts it chooses among")
     only_with(args, parser, "select_criterion", "select", "the criterion it chooses by")
-    if args.select and max(args.select_units) > args.neurons + 8:
-        parser.error(f"argument --select-units: {max(args.select_units)} exceeds the "
-                     f"{args.neurons + 8} inputs of SFA (--neurons + 8 sensors)")
-    if args.n_sfa > args.neurons + 8:
-        parser.error(f"argument --n-sfa: {args.n_sfa} exceeds the {args.neurons + 8} inputs of "
-                     "SFA (--neurons + 8 sensors)")
+    # the reservoir run() builds: --quick caps it at QUICK_NEURONS
+    quick = bool(getattr(args, "quick", False)) and args.neurons > QUICK_NEURONS
+    neurons, what = (QUICK_NEURONS, f" (--quick: {QUICK_NEURONS} neurons)") if quick else (
+        args.neurons, "")
+    if args.select:
+        check_sfa_inputs(parser, "--select-units", max(args.select_units), neurons, 0.0, what)
+    # twice the inputs with the slow pool (its running mean is appended to the SFA input)
+    check_sfa_inputs(parser, "--n-sfa", args.n_sfa, neurons, args.slow_pool, what)
     if args.slow_pool and (args.faults or args.leak_sweep):
         parser.error("argument --slow-pool: not measured with --faults or --leak-sweep (they "
                      "read the reservoir state without the pool); leave one out")
@@ -190,7 +195,7 @@ def run(args: argparse.Namespace) -> dict:
     out = prepare_out(args.out)
     quick = bool(args.quick)
     ticks = min(args.ticks, 8000) if quick else args.ticks
-    neurons = min(args.neurons, 120) if quick else args.neurons
+    neurons = min(args.neurons, QUICK_NEURONS) if quick else args.neurons
     restarts = min(args.ica_restarts, 3) if quick else args.ica_restarts
     arena = arenas.two_rooms()
     seeds = seed_list(args)
