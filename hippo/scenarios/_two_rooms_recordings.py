@@ -118,7 +118,7 @@ def _cached_kidnaps(meta_path: Path, ticks: int) -> tuple[Recording, list, list,
         raise CorruptFileError(f"{meta_path} must hold the lists events, kinds and moved")
     ev, kinds, moved = meta["events"], meta["kinds"], meta["moved"]
     if not (len(ev) == len(kinds) == len(moved)) or len(rec_kid) != ticks \
-            or not all(isinstance(e, int) and 0 <= e < ticks for e in ev) \
+            or not all(type(e) is int and 0 <= e < ticks for e in ev) \
             or not all(isinstance(k, str) for k in kinds) \
             or not all(isinstance(m, bool) for m in moved):
         raise CorruptFileError(f"{meta_path}: events, kinds and moved do not match each other "

@@ -124,7 +124,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "1e-8 gives fewer localized units here)")
     parser.add_argument("--washout", type=_washout, default="auto",
                         help="reservoir updates left out at the start of the fit, or 'auto': "
-                             "until the start from rest has faded to 1e-3 (114 here); 0: none "
+                             "until the start from rest has faded to 1e-3 (1150 here); 0: none "
                              "(ICA then spends ~4 units on the start-up transient)")
     parser.add_argument("--threshold", type=number(0.0, 1000.0, lo_open=True),
                         default=M.ICANN09_THRESHOLD,
@@ -165,6 +165,9 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
     if args.units > args.neurons + 17:
         parser.error(f"argument --units: {args.units} exceeds the {args.neurons + 17} inputs "
                      "of SFA (--neurons + 17 rays)")
+    if args.ablation and args.units > 170:   # quadratic SFA on the 17 rays: 17 + 17 x 18 / 2
+        parser.error(f"argument --units: {args.units} exceeds the 170 inputs of the ablation's "
+                     "SFA (the 17 rays, quadratic); fewer --units, or --no-ablation")
 
 
 def _analyse(model: RCSFAICA, U: np.ndarray, labels: np.ndarray, n_train: int,
@@ -365,11 +368,7 @@ def run(args: argparse.Namespace) -> dict:
 def _figures(out, arena, rec, keep, threshold: float, n_loc: int) -> None:
     import matplotlib.pyplot as plt
 
-    from hippo.plots.perception import (
-        plot_activation_map,
-        plot_sfa_units,
-        plot_units_over_arena,
-    )
+    from hippo.plots.perception import plot_activation_map, plot_sfa_units, plot_units_over_arena
 
     for name, tag in (("rc_sfa_ica", ""), ("no_reservoir_quadratic", "_ablation")):
         if name not in keep:
