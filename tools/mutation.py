@@ -1123,8 +1123,6 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      r"neurons, None, what\)", "equivalent: check_sfa_inputs tests slow_pool for truth"),
     ("hippo/scenarios/two_rooms.py", r'"smc09": \(SMC09_UNITS,\) \* 2\}', r"\* 3\}",
      "equivalent: only a configuration's units[0] and units[1] are read"),
-    ("hippo/scenarios/patrol.py", r"if abs\(learned / asked - 1.0\) > 0.05:", r"\) >= 0.05:",
-     "equivalent: |learned / asked - 1| is never 0.05 exactly (1 +- 0.05 is not a double)"),
     ("hippo/scenarios/patrol.py", r'def route_note\(route: Route, kind: str = "shortest"\)',
      r'kind: str = "(XXshortestXX|SHORTEST)"\)',
      'equivalent: any default other than "tour" is read alike'),

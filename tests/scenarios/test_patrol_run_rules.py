@@ -66,6 +66,11 @@ def test_wait_summary_every_branch():
         "cp-1: wait 20 s, learned 21.0 s (+5 %), never passed on the patrol")
     assert P._wait_summary(_row(taught_block_s=20.0, learned_wait_s=18.99, passes=0)) == (
         "cp-1: wait 20 s, learned 19.0 s (-5 %), never passed on the patrol")
+    # exactly 5 % off is not more than 5 % (21 / 20 - 1 is 0.050000000000000044 in floats)
+    assert P._wait_summary(_row(taught_block_s=20.0, learned_wait_s=21.0, passes=0)) == (
+        "cp-1: wait 20 s, learned 21.0 s, never passed on the patrol")
+    assert P._wait_summary(_row(taught_block_s=20.0, learned_wait_s=19.0, passes=0)) == (
+        "cp-1: wait 20 s, learned 19.0 s, never passed on the patrol")
     # one step further it is, with its sign
     assert P._wait_summary(_row(learned_wait_s=10.6, passes=0)) == (
         "cp-1: wait 10 s, learned 10.6 s (+6 %), never passed on the patrol")
