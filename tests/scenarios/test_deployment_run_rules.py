@@ -13,23 +13,15 @@ from typing import Any, ClassVar
 
 import numpy as np
 import pytest
+from refusing_parser import Refused, RefusingParser
 
 import hippo.scenarios.deployment as D
 from hippo.tasks.deployment import DeploymentParams
 from hippo.tasks.patrol import PatrolPhase
 
 
-class _Refused(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:   # type: ignore[override]
-        raise _Refused(message)
-
-
-def _parser() -> _Parser:
-    p = _Parser(prog="deployment")
+def _parser() -> RefusingParser:
+    p = RefusingParser(prog="deployment")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--quick", action="store_true")
     D.add_arguments(p)
@@ -62,7 +54,7 @@ def test_save_with_resume_is_refused_before_the_course_checks(monkeypatch):
     monkeypatch.setattr(D, "check_course_args", lambda a, p: checked.append(a))
     p = _parser()
     args = argparse.Namespace(resume=True, save="robot")
-    with pytest.raises(_Refused) as e:
+    with pytest.raises(Refused) as e:
         D.check_args(args, p)
     assert str(e.value) == ("argument --save: not allowed with --resume (a resumed run teaches "
                             "no robot to save); save with the run that teaches it")

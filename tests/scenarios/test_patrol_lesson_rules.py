@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from refusing_parser import Refused, RefusingParser
 
 import hippo.scenarios._patrol_lesson as P
 from hippo.agent import Agent
@@ -26,17 +27,8 @@ from hippo.tasks.patrol import PatrolPhase
 CPS = [(80.0, 11.0), (140.0, 56.0), (50.0, 105.0)]   # patrol-course's own
 
 
-class _Refused(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:   # type: ignore[override]
-        raise _Refused(message)
-
-
-def _parser() -> _Parser:
-    p = _Parser(prog="patrol")
+def _parser() -> RefusingParser:
+    p = RefusingParser(prog="patrol")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--quick", action="store_true")
     P.add_course_arguments(p)
@@ -44,7 +36,7 @@ def _parser() -> _Parser:
 
 
 def _refusal(fn: Any, *args: Any) -> str:
-    with pytest.raises(_Refused) as e:
+    with pytest.raises(Refused) as e:
         fn(*args)
     return str(e.value)
 
@@ -186,7 +178,7 @@ def test_a_course_refusal_names_the_option_it_is_about(monkeypatch):
                       "(a pass is 15 cm either side)", "--checkpoints"),
                      # only the words before " for " decide
                      ("no room for a wait at checkpoint 2", "--checkpoints")):
-        with pytest.raises(_Refused) as e:
+        with pytest.raises(Refused) as e:
             _checked(monkeypatch, [], fail=why)
         assert str(e.value) == f"argument {opt}: {why}"
 
@@ -202,7 +194,7 @@ def test_a_wait_too_short_given_by_a_program_is_refused_as_waits():
 
 
 def test_ground_truth_cells_refuse_the_learned_cells_options(monkeypatch):
-    with pytest.raises(_Refused) as e:
+    with pytest.raises(Refused) as e:
         _checked(monkeypatch, ["--place-cells", "ground-truth", "--units", "7"])
     assert str(e.value) == ("argument --units: only for learned place cells; leave it out with "
                             "--place-cells ground-truth")
@@ -294,7 +286,7 @@ def test_a_loaded_robots_place_cells_say_their_units_and_reanchoring(monkeypatch
     args, _ = _load(monkeypatch, tmp_path, [], loaded)
     assert (args.units, args.places, args.reanchor) == (16, 40, True)
     assert type(args.units) is int
-    with pytest.raises(_Refused) as e:
+    with pytest.raises(Refused) as e:
         _load(monkeypatch, tmp_path, ["--units", "40"], loaded)
     assert str(e.value) == ("argument --units: the loaded robot was made with units 16; leave "
                             "--units out with --load")
@@ -338,7 +330,7 @@ def test_the_load_refusals_word_for_word(monkeypatch, tmp_path):
          "--heading-sectors out with --load"),
     ]
     for argv, what, want in cases:
-        with pytest.raises(_Refused) as e:
+        with pytest.raises(Refused) as e:
             _load(monkeypatch, tmp_path, argv, what)
         assert str(e.value) == want, argv
 

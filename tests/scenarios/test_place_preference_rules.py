@@ -13,6 +13,7 @@ from types import SimpleNamespace
 from typing import Any
 
 import pytest
+from refusing_parser import Refused, RefusingParser
 
 import hippo.scenarios.place_preference as PP
 from hippo.agent import Agent
@@ -20,17 +21,8 @@ from hippo.io import CorruptFileError
 from hippo.sim import World
 
 
-class _Refused(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:   # type: ignore[override]
-        raise _Refused(message)
-
-
-def _parser() -> _Parser:
-    p = _Parser(prog="place-preference")
+def _parser() -> RefusingParser:
+    p = RefusingParser(prog="place-preference")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--quick", action="store_true")
     PP.add_arguments(p)
@@ -38,7 +30,7 @@ def _parser() -> _Parser:
 
 
 def _refusal(fn: Any, *args: Any) -> str:
-    with pytest.raises(_Refused) as e:
+    with pytest.raises(Refused) as e:
         fn(*args)
     return str(e.value)
 

@@ -13,21 +13,13 @@ from typing import Any, ClassVar
 
 import numpy as np
 import pytest
+from refusing_parser import Refused, RefusingParser
 
 import hippo.scenarios.two_rooms as TR
 
 
-class _Refused(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:   # type: ignore[override]
-        raise _Refused(message)
-
-
-def _parser() -> _Parser:
-    p = _Parser(prog="two-rooms")
+def _parser() -> RefusingParser:
+    p = RefusingParser(prog="two-rooms")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--quick", action="store_true")
     TR.add_arguments(p)
@@ -37,7 +29,7 @@ def _parser() -> _Parser:
 def _refusal(argv: list[str]) -> str:
     p = _parser()
     a = p.parse_args(argv)
-    with pytest.raises(_Refused) as e:
+    with pytest.raises(Refused) as e:
         TR.check_args(a, p)
     return str(e.value)
 
