@@ -364,10 +364,11 @@ def run(args: argparse.Namespace) -> dict:
     if args.figures:
         _figure(out, rows, args.n_rooms, seeds)
     scored, total = sum(r["rooms_scored"] for r in rows), args.n_rooms * len(rows)
+    k = sorted({r["decoder_features"] for r in rows})   # flats may read different counts
     write_metrics(out, metrics, summary=(
         f"rooms: {args.n_rooms} per flat, {len(seeds)} flats: room cell "
         f"{metrics['room_cell_mean']:.3f}, decoder {metrics['decoder_balanced_accuracy']:.3f} "
-        f"(reading {rows[0]['decoder_features']} slow features)"
+        f"(reading {k[0]}{'' if len(k) == 1 else f'-{k[-1]}'} slow features)"
         + (f", ceiling {metrics['ceiling_room_mean']:.3f}" if args.ceiling else "")
         + (f" ({scored} of {total} rooms scored: a room that the training part never entered "
            "(or entered alone), or the test part never entered, has no room cell; a test part "

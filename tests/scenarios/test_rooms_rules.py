@@ -627,6 +627,13 @@ def test_run_summarises_the_flats(monkeypatch, tmp_path):
         " (5 of 6 rooms scored: a room that the training part never entered (or entered "
         "alone), or the test part never entered, has no room cell; a test part inside one "
         "room has no decoder score; record longer with --ticks-per-room)")
+    # flats that read different counts: the line gives the least to the most, not the first's
+    rows[0]["decoder_features"], rows[1]["decoder_features"] = 36, 24
+    rows[1]["rooms_scored"] = 3
+    seen.clear()
+    R.run(args)
+    assert written[2][1] == ("rooms: 3 per flat, 2 flats: room cell 0.700, decoder 0.900 "
+                             "(reading 24-36 slow features)")
 
 
 def test_run_with_select_and_no_decoder_score(monkeypatch, tmp_path):
