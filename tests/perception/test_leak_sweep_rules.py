@@ -12,29 +12,18 @@ from __future__ import annotations
 
 import re
 import warnings
-from collections.abc import Iterator
-from contextlib import contextmanager
 from typing import Any
 
 import numpy as np
 import pytest
+from small_sweeps import SMALL, quiet, walk
 
 import hippo.perception.leak_sweep as ls
-from hippo.perception.ica import ICAConvergenceWarning
 from hippo.perception.leak_sweep import fit_leak_sweep, sweep_features
 from hippo.perception.place_cell_params import RCSFAICAParams
 from hippo.perception.place_cells import RCSFAICA
 from hippo.perception.reservoir import Reservoir
 from hippo.perception.sfa import SFA
-
-SMALL: dict[str, Any] = dict(n_inputs=3, n_reservoir=6, n_sfa=2, n_ica=2, ica_restarts=1,
-                             min_fit_ticks=10, dtype="float64")
-
-
-def _walk(T: int = 300, n: int = 3, seed: int = 3) -> np.ndarray:
-    rng = np.random.default_rng(seed)
-    pos = np.cumsum(rng.standard_normal(T)) * 0.05
-    return 0.5 + 0.4 * np.sin(pos[:, None] * np.arange(1, n + 1) + np.arange(n))
 
 
 def _eq1(res: Reservoir, a: np.ndarray, U: np.ndarray) -> np.ndarray:
@@ -48,16 +37,9 @@ def _eq1(res: Reservoir, a: np.ndarray, U: np.ndarray) -> np.ndarray:
     return np.array(out)
 
 
-@contextmanager
-def _quiet() -> Iterator[None]:
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ICAConvergenceWarning)
-        yield
-
-
 # ------------------------------------------------------------------------------ features
 def test_each_configuration_is_the_reading_then_eq1_with_its_own_leak():
-    U = _walk(15)
+    U = walk(15)
     leaks = [0.3, (0.1, 0.9), [0.2, 0.4, 0.6, 0.8, 1.0, 0.5]]
     F = sweep_features(U, leaks, **SMALL)
     rows = [np.full(6, 0.3), np.array([0.1] * 3 + [0.9] * 3),
@@ -75,7 +57,7 @@ def test_each_configuration_is_the_reading_then_eq1_with_its_own_leak():
 
 
 def test_more_than_a_batch_of_16_each_with_its_own_leak():
-    U = _walk(8)
+    U = walk(8)
     leaks = [0.05 * (k + 1) for k in range(18)]      # batches of 16 and 2
     F = sweep_features(U, leaks, **SMALL)
     assert len(F.X) == 18
@@ -85,7 +67,7 @@ def test_more_than_a_batch_of_16_each_with_its_own_leak():
 
 
 def test_the_slow_pool_follows_u_and_x():
-    U = _walk(10)
+    U = walk(10)
     tau = 4.0
     F = sweep_features(U, [0.5], slow_pool=tau, **SMALL)
     Z = np.column_stack([U, _eq1(F.reservoir, np.full(6, 0.5), U)])
@@ -99,7 +81,7 @@ def test_the_slow_pool_follows_u_and_x():
 
 
 def test_down_sampled_the_rows_are_the_decimated_readings():
-    U = _walk(20)
+    U = walk(20)
     F = sweep_features(U, [0.4], downsample=2, **SMALL)
     Ud = RCSFAICA(downsample=2, **SMALL)._decimator().offline(U)
     assert F.X[0].shape == (10, 9)
@@ -117,27 +99,27 @@ def test_the_harvest_runs_on_one_blas_thread(monkeypatch):
         return run(self, U, **kw)
 
     monkeypatch.setattr(Reservoir, "run", spy)
-    sweep_features(_walk(5), [0.1] * 17, **SMALL)
+    sweep_features(walk(5), [0.1] * 17, **SMALL)
     assert seen == [1, 1]
 
 
 def test_sweep_refusals_word_for_word():
     with pytest.raises(ValueError, match=r"^a leak sweep needs use_reservoir=True$"):
-        sweep_features(_walk(20), [0.1], **{**SMALL, "use_reservoir": False})
+        sweep_features(walk(20), [0.1], **{**SMALL, "use_reservoir": False})
     with pytest.raises(ValueError, match=r"^leaks is empty$"):
-        sweep_features(_walk(20), [], **SMALL)
+        sweep_features(walk(20), [], **SMALL)
     with pytest.raises(ValueError, match=r"^leaks is empty$"):
-        fit_leak_sweep(_walk(20), (), **SMALL)
+        fit_leak_sweep(walk(20), (), **SMALL)
     with pytest.raises(ValueError, match="workers"):
-        sweep_features(_walk(20), [0.1], workers=0, **SMALL)
+        sweep_features(walk(20), [0.1], workers=0, **SMALL)
     # params and overrides: the overrides win
-    F = sweep_features(_walk(20), [0.1], RCSFAICAParams(n_reservoir=9, **{
+    F = sweep_features(walk(20), [0.1], RCSFAICAParams(n_reservoir=9, **{
         k: v for k, v in SMALL.items() if k != "n_reservoir"}), n_reservoir=5)
     assert F.base.n_reservoir == 5 and F.X[0].shape == (20, 8)
 
 
 def test_a_harvest_alone_follows_the_out_of_range_policy():
-    U = _walk(20)
+    U = walk(20)
     U[3, 1] = 1.5
     with pytest.raises(ValueError, match=r"would extrapolate"):
         sweep_features(U, [0.1], **SMALL)
@@ -156,7 +138,7 @@ def _sums(X: np.ndarray) -> tuple[int, np.ndarray, np.ndarray, int, np.ndarray]:
                                          (-100, None, 8900, 9000), (10, -10, 10, 8990),
                                          (4096, 4097, 4096, 4097)])
 def test_moments_of_a_block_are_its_sums(t0, t1, lo, hi):
-    F = sweep_features(_walk(9000), [0.2], **SMALL)
+    F = sweep_features(walk(9000), [0.2], **SMALL)
     m = F.moments(0, t0, t1)
     n, mean, S, nd, DS = _sums(F.X[0][lo:hi])
     assert m.n == n and m.n_diff == nd
@@ -167,7 +149,7 @@ def test_moments_of_a_block_are_its_sums(t0, t1, lo, hi):
 
 
 def test_moments_are_per_configuration():
-    F = sweep_features(_walk(50), [0.2, 0.9], **SMALL)
+    F = sweep_features(walk(50), [0.2, 0.9], **SMALL)
     a, b = F.moments(0), F.moments(1)
     np.testing.assert_allclose(b.mean, F.X[1].mean(axis=0), atol=1e-14)
     assert not np.allclose(a.mean, b.mean)
@@ -175,9 +157,9 @@ def test_moments_are_per_configuration():
 
 # ---------------------------------------------------------------------------------- fits
 def test_fit_on_a_block_is_a_model_fitted_on_that_block():
-    U = _walk(300)
+    U = walk(300)
     F = sweep_features(U, [0.5, (0.1, 0.3)], **SMALL)
-    with _quiet():
+    with quiet():
         m = F.fit(1, 20, 250)
         prefix = F.fit(1, 0, 250)
         alone = RCSFAICA(**SMALL, leak=(0.1, 0.3)).fit(U[:250])     # a prefix is the recording's
@@ -194,21 +176,21 @@ def test_fit_on_a_block_is_a_model_fitted_on_that_block():
     np.testing.assert_allclose(m.sfa_slowness_, ref.sfa_slowness_, rtol=1e-9)
     np.testing.assert_allclose(m.readout(F.X[1]), ref.readout(F.X[1]), atol=1e-9)
     # the leak written back is a float for a scalar leak
-    with _quiet():
+    with quiet():
         m0 = F.fit(0, 0, 200)
     assert m0.params.leak == 0.5 and type(m0.params.leak) is float
 
 
 def test_fit_with_the_blocks_moments_is_the_fit_without():
-    F = sweep_features(_walk(300), [0.5], **SMALL)
-    with _quiet():
+    F = sweep_features(walk(300), [0.5], **SMALL)
+    with quiet():
         a = F.fit(0, 0, 200)
         b = F.fit(0, 0, 200, F.moments(0, 0, 100).merged(F.moments(0, 100, 200)))
     np.testing.assert_allclose(b.sfa_slowness_, a.sfa_slowness_, rtol=1e-9)
 
 
 def test_fit_sfa_is_sfa_of_the_block():
-    F = sweep_features(_walk(300), [0.5], **SMALL)
+    F = sweep_features(walk(300), [0.5], **SMALL)
     X = F.X[0][30:260]
     sfa = F.fit_sfa(0, 30, 260)
     ref = SFA(F.base.sfa_params()).fit(X)
@@ -220,18 +202,18 @@ def test_fit_sfa_is_sfa_of_the_block():
 
 
 def test_moments_with_a_washout_are_refused_word_for_word():
-    F = sweep_features(_walk(300), [0.5], washout=5, **SMALL)
+    F = sweep_features(walk(300), [0.5], washout=5, **SMALL)
     with pytest.raises(ValueError, match=r"^moments are given for the rows after the washout: "
                                          r"washout=0 only$"):
         F.fit(0, 0, 200, F.moments(0, 0, 200))
-    with _quiet():
+    with quiet():
         F.fit(0, 0, 200)                        # without moments the washout is fine
 
 
 # ------------------------------------------------------------------------- fit_leak_sweep
 def test_fit_leak_sweep_is_each_configuration_fitted_alone():
-    U = _walk(300)
-    with _quiet():
+    U = walk(300)
+    with quiet():
         models = fit_leak_sweep(U, [0.5, (0.1, 0.3)], workers=1, **SMALL)
         alone = [RCSFAICA(**SMALL, leak=lk).fit(U) for lk in (0.5, (0.1, 0.3))]
     assert [m.params.leak for m in models] == [0.5, (0.1, 0.3)]
@@ -248,9 +230,9 @@ def test_fit_leak_sweep_threads(monkeypatch):
         return pm(f, items, k)
 
     monkeypatch.setattr(ls, "parallel_map", spy)
-    with _quiet():
-        fit_leak_sweep(_walk(200), [0.5, 0.7], workers=3, **SMALL)
-        fit_leak_sweep(_walk(200), [0.5, 0.7, 0.9], workers=2, **SMALL)
+    with quiet():
+        fit_leak_sweep(walk(200), [0.5, 0.7], workers=3, **SMALL)
+        fit_leak_sweep(walk(200), [0.5, 0.7, 0.9], workers=2, **SMALL)
     assert seen == [2, 2]                 # min(workers, configurations)
 
 
@@ -262,7 +244,7 @@ def _fit_error(U: np.ndarray, **kw: Any) -> str:
 
 @pytest.mark.parametrize("policy", ["error", "clip", "warn"])
 def test_fit_leak_sweep_refuses_readings_out_of_range_as_fit_does(policy):
-    U = _walk(200)
+    U = walk(200)
     U[7, 2] = 1.25
     words = _fit_error(U, out_of_range=policy)
     assert words.endswith("; place cells are learned from sensor readings scaled to "
@@ -272,14 +254,14 @@ def test_fit_leak_sweep_refuses_readings_out_of_range_as_fit_does(policy):
         with pytest.raises(ValueError, match="^" + re.escape(words) + "$"):
             fit_leak_sweep(U, [0.5], out_of_range=policy, **SMALL)
     # the same recording is taken with its true range
-    with _quiet():
+    with quiet():
         fit_leak_sweep(U, [0.5], input_range=(0.0, 1.25), **SMALL)
 
 
 def test_fit_leak_sweep_takes_readings_exactly_on_the_bounds():
-    U = _walk(200)
+    U = walk(200)
     U[3, 0], U[4, 1] = 0.0, 1.0
-    with _quiet():
+    with quiet():
         fit_leak_sweep(U, [0.5], **SMALL)
     U[4, 1] = np.nextafter(1.0, 2.0)
     with pytest.raises(ValueError, match=r"holds readings outside input_range \[0, 1\]"):
@@ -291,14 +273,14 @@ def test_fit_leak_sweep_takes_readings_exactly_on_the_bounds():
 def test_fit_leak_sweep_refuses_a_recording_too_short_as_fit_does(kw, T):
     # min_fit_ticks = 10 updates: T // downsample - washout = 9 is one short
     assert T // kw.get("downsample", 1) - kw.get("washout", 0) == 9
-    U = _walk(T)
+    U = walk(T)
     words = _fit_error(U, **kw)
     assert words.startswith(f"U has {T} ticks (9 reservoir updates after a washout of ")
     with pytest.raises(ValueError, match="^" + re.escape(words) + "$"):
         fit_leak_sweep(U, [0.5], **{**SMALL, **kw})
     # one tick-block more: exactly min_fit_ticks updates, taken
-    with _quiet():
-        fit_leak_sweep(_walk(T + kw.get("downsample", 1)), [0.5], **{**SMALL, **kw})
+    with quiet():
+        fit_leak_sweep(walk(T + kw.get("downsample", 1)), [0.5], **{**SMALL, **kw})
 
 
 def test_fit_leak_sweep_refuses_every_sensor_stuck_as_fit_does():
@@ -312,7 +294,7 @@ def test_fit_leak_sweep_refuses_every_sensor_stuck_as_fit_does():
 
 
 def test_the_features_are_in_the_reservoirs_dtype():
-    U = _walk(20)
+    U = walk(20)
     F = sweep_features(U, [0.4], **{**SMALL, "dtype": "float32"})
     assert F.X[0].dtype == np.float32
     assert np.array_equal(F.X[0][:, :3], U.astype(np.float32))
@@ -320,8 +302,8 @@ def test_the_features_are_in_the_reservoirs_dtype():
 
 
 def test_defaults_fit_every_row():
-    F = sweep_features(_walk(300), [0.5], **SMALL)
-    with _quiet():
+    F = sweep_features(walk(300), [0.5], **SMALL)
+    with quiet():
         whole, part = F.fit_sfa(0), F.fit_sfa(0, 0, 300)
         m_whole, m_part = F.fit(0), F.fit(0, 0, 300)
     np.testing.assert_allclose(whole.transform(F.X[0]), part.transform(F.X[0]), atol=1e-12)
@@ -329,8 +311,8 @@ def test_defaults_fit_every_row():
 
 
 def test_fit_uses_the_moments_given():
-    F = sweep_features(_walk(300), [0.5], **SMALL)
-    with _quiet():
+    F = sweep_features(walk(300), [0.5], **SMALL)
+    with quiet():
         own = F.fit(0, 30, 260)
         other = F.fit(0, 30, 260, F.moments(0, 0, 230))     # another block's, same length
     assert not np.allclose(other.sfa_slowness_, own.sfa_slowness_, rtol=1e-6)
@@ -345,8 +327,8 @@ def test_fit_leak_sweep_fits_on_one_torch_thread(monkeypatch):
         return tt(n)
 
     monkeypatch.setattr(ls, "_torch_threads", spy)
-    with _quiet():
-        fit_leak_sweep(_walk(200), [0.5], **SMALL)
+    with quiet():
+        fit_leak_sweep(walk(200), [0.5], **SMALL)
     assert seen == [1]
 
 
@@ -360,5 +342,5 @@ def test_bad_workers_are_refused_before_the_harvest(monkeypatch):
 
     monkeypatch.setattr(Reservoir, "run", spy)
     with pytest.raises(ValueError, match="workers"):
-        fit_leak_sweep(_walk(200), [0.5], workers=0, **SMALL)
+        fit_leak_sweep(walk(200), [0.5], workers=0, **SMALL)
     assert runs == []

@@ -11,14 +11,12 @@ from __future__ import annotations
 
 import re
 import warnings
-from collections.abc import Iterator
-from contextlib import contextmanager
 from typing import Any
 
 import numpy as np
 import pytest
+from small_sweeps import SMALL, quiet, walk
 
-from hippo.perception.ica import ICAConvergenceWarning
 from hippo.perception.leak_sweep import sweep_features
 from hippo.perception.place_cell_params import RCSFAICAParams
 from hippo.perception.place_cells import RCSFAICA
@@ -37,22 +35,6 @@ from hippo.perception.selection import (
     with_units,
 )
 from hippo.perception.sfa_moments import SFAMoments
-
-SMALL: dict[str, Any] = dict(n_inputs=3, n_reservoir=6, n_sfa=2, n_ica=2, ica_restarts=1,
-                             min_fit_ticks=10, dtype="float64")
-
-
-def _walk(T: int = 300, n: int = 3, seed: int = 3) -> np.ndarray:
-    rng = np.random.default_rng(seed)
-    pos = np.cumsum(rng.standard_normal(T)) * 0.05
-    return 0.5 + 0.4 * np.sin(pos[:, None] * np.arange(1, n + 1) + np.arange(n))
-
-
-@contextmanager
-def _quiet() -> Iterator[None]:
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ICAConvergenceWarning)
-        yield
 
 
 # ------------------------------------------------------------------------------ slowness
@@ -146,7 +128,7 @@ def test_prediction_error_with_nothing_to_go_on_by_hand():
 
 
 def test_prediction_error_of_a_perfect_linear_predictor_is_zero():
-    U = _walk(60)
+    U = walk(60)
     Y = np.vstack([U[1:] * 2.0 - 1.0, U[-1:]])   # y(t) = 2 u(t + 1) - 1
     assert prediction_error(Y, U, 30, ridge=0.0) == pytest.approx(0.0, abs=1e-20)
     assert prediction_error(Y, U, 30, ridge=1e-3) > 1e-9    # the ridge shrinks the map
@@ -237,8 +219,8 @@ def test_rank_correlation():
 
 # ------------------------------------------------------------------- held-out slowness
 def test_heldout_slowness_and_its_edges():
-    U = _walk(120)
-    with _quiet():
+    U = walk(120)
+    with quiet():
         m = RCSFAICA(**SMALL).fit(U[:80])
     _, Ysfa = m.transform(U, return_sfa=True)
     assert heldout_slowness(m, U, 80) == pytest.approx(
@@ -254,20 +236,20 @@ def test_heldout_slowness_and_its_edges():
 # ----------------------------------------------------------------------------- sweeps
 @pytest.fixture(scope="module")
 def F() -> Any:
-    return sweep_features(_walk(200), [0.5, (0.1, 0.3)], **SMALL)
+    return sweep_features(walk(200), [0.5, (0.1, 0.3)], **SMALL)
 
 
 @pytest.mark.parametrize("criterion", CRITERIA)
 def test_each_criterion_is_its_composition(F, criterion):
     n_rows, n_fit, h = 150, 120, 60
-    with _quiet():
+    with quiet():
         scores, models = score_sweep(F, n_rows, criterion)
     assert scores.shape == (2,)
     assert len(models) == (0 if criterion in ("stability", "slow-stable") else 2)
     val = slice(n_fit, n_rows)
     for b in range(2):
         Xv = F.X[b][val]
-        with _quiet():
+        with quiet():
             if criterion in ("stability", "slow-stable"):
                 want = instability(F.fit_sfa(b, 0, h).transform(Xv),
                                    F.fit_sfa(b, h, n_fit).transform(Xv))
@@ -289,7 +271,7 @@ def test_each_criterion_is_its_composition(F, criterion):
 
 
 def test_prediction_scores_the_horizon(F):
-    with _quiet():
+    with quiet():
         s1, _ = score_sweep(F, 150, "prediction", horizon=1)
         s5, _ = score_sweep(F, 150, "prediction", horizon=5)
         m = F.fit(0, 0, 120)
@@ -307,7 +289,7 @@ def test_score_sweep_refusals_on_their_edges(F):
         with pytest.raises(ValueError, match="^" + re.escape(
                 f"val_fraction must lie in [0.05, 0.5], got {vf}") + "$"):
             score_sweep(F, 150, "bimodality", val_fraction=vf)
-    with _quiet():
+    with quiet():
         score_sweep(F, 150, "bimodality", val_fraction=0.05)
         score_sweep(F, 150, "bimodality", val_fraction=0.5)
         score_sweep(F, 25, "stability")                # n_fit = 20, 20 < 25 - 3
@@ -329,7 +311,7 @@ def test_score_sweep_refusals_on_their_edges(F):
 
 
 def test_units_outer_leaks_inner(F):
-    with _quiet():
+    with quiet():
         s, models = score_sweep(F, 150, "bimodality", units=[1, 2])
         s1, _ = score_sweep(with_units(F, 1), 150, "bimodality")
         s2, _ = score_sweep(F, 150, "bimodality")
@@ -350,9 +332,9 @@ def test_with_units_edges(F):
 
 # --------------------------------------------------------------------------- select_leak
 def test_select_leak_picks_the_lowest_score_and_refits():
-    U = _walk(200)
+    U = walk(200)
     leaks = [0.5, (0.1, 0.3)]
-    with _quiet():
+    with quiet():
         sel = select_leak(U, leaks, n_rows=150, units=[1, 2], **SMALL)
         F = sweep_features(U, leaks, **SMALL)
         s, _ = score_sweep(F, 150, DEFAULT_CRITERION, units=[1, 2])
@@ -363,12 +345,12 @@ def test_select_leak_picks_the_lowest_score_and_refits():
     assert sel.best_candidate == sel.candidates[sel.best]
     assert sel.best_units == sel.units[sel.best]
     for c in range(4):
-        with _quiet():
+        with quiet():
             r = sel.refit(c, 170)
             ref = with_units(F, sel.units[c]).fit(c % 2, 0, 170)
         assert r.params.n_ica == sel.units[c] and r.params.leak == leaks[c % 2]
         np.testing.assert_allclose(r.readout(F.X[c % 2]), ref.readout(F.X[c % 2]), atol=1e-7)
-    with _quiet():
+    with quiet():
         sel.refit(0, 120)
         sel.refit(0, 200)
     for n in (119, 201):
@@ -378,8 +360,8 @@ def test_select_leak_picks_the_lowest_score_and_refits():
 
 
 def test_select_leak_defaults():
-    U = _walk(100)
-    with _quiet():
+    U = walk(100)
+    with quiet():
         sel = select_leak(U, [0.5], criterion="stability", val_fraction=0.3, **SMALL)
     assert sel.n_fit == 70 and sel.units == [] and sel.best_units is None
     assert sel.models == [] and sel.candidates == [0.5]
@@ -420,34 +402,34 @@ def _count_rows(monkeypatch: pytest.MonkeyPatch) -> list[int]:
 
 @pytest.mark.parametrize("criterion", CRITERIA)
 def test_each_fitting_row_is_summed_once(monkeypatch, criterion):
-    F = sweep_features(_walk(200), [0.5, (0.1, 0.3)], **SMALL)
+    F = sweep_features(walk(200), [0.5, (0.1, 0.3)], **SMALL)
     rows = _count_rows(monkeypatch)
-    with _quiet():
+    with quiet():
         score_sweep(F, 150, criterion)
     assert sum(rows) == 2 * 120                 # the two halves' moments, merged for the rest
     assert set(F._moments) == {(b, t0, t1) for b in (0, 1) for t0, t1 in ((0, 60), (60, 120))}
 
 
 def test_refit_sums_only_the_new_rows(monkeypatch):
-    U = _walk(200)
-    with _quiet():
+    U = walk(200)
+    with quiet():
         sel = select_leak(U, [0.5, 0.9], n_rows=150, **SMALL)
     rows = _count_rows(monkeypatch)
-    with _quiet():
+    with quiet():
         sel.refit(1, 170)
     assert sum(rows) == 170 - 120
 
 
 def test_select_leak_takes_its_params():
     params = RCSFAICAParams(**{**SMALL, "n_reservoir": 5})
-    with _quiet():
-        sel = select_leak(_walk(100), [0.5], params, criterion="stability")
+    with quiet():
+        sel = select_leak(walk(100), [0.5], params, criterion="stability")
     assert sel.features is not None and sel.features.base == params
     assert sel.features.X[0].shape == (100, 8)
 
 
 def test_with_units_of_a_one_leak_sweep():
-    F1 = sweep_features(_walk(30), [0.5], **SMALL)
+    F1 = sweep_features(walk(30), [0.5], **SMALL)
     with pytest.raises(ValueError, match=r"^units must lie in \[1, 9\] \(the SFA inputs\), "
                                          r"got 0$"):
         with_units(F1, 0)

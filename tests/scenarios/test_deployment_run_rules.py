@@ -13,7 +13,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 import pytest
-from refusing_parser import Refused, RefusingParser
+from stand_ins import Refused, RefusingParser, recording_progress
 
 import hippo.scenarios.deployment as D
 from hippo.tasks.deployment import DeploymentParams
@@ -329,20 +329,7 @@ def _deploy(monkeypatch, tmp_path, argv: list[str], *, overrun: float = 10.0,
     clock = iter(range(10_000))
     monkeypatch.setattr(D, "time", SimpleNamespace(perf_counter=lambda: float(next(clock))))
 
-    class _Progress:
-        def __init__(self, total: int, desc: str) -> None:
-            seen["progress"] = [total, desc]
-
-        def __enter__(self) -> _Progress:
-            return self
-
-        def __exit__(self, *exc: Any) -> None:
-            pass
-
-        def update(self, n: int = 1) -> None:
-            seen["progress"].append(n)
-
-    monkeypatch.setattr(D, "Progress", _Progress)
+    monkeypatch.setattr(D, "Progress", recording_progress(seen))
     seen["session"], seen["course"] = s, course
     p = _parser()
     args = p.parse_args(["--arena", "patrol-course", *argv])

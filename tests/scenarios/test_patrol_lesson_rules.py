@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from refusing_parser import Refused, RefusingParser
+from stand_ins import Refused, RefusingParser
 
 import hippo.scenarios._patrol_lesson as P
 from hippo.agent import Agent

@@ -13,7 +13,7 @@ from types import SimpleNamespace
 from typing import Any
 
 import pytest
-from refusing_parser import Refused, RefusingParser
+from stand_ins import Refused, RefusingParser, recording_progress
 
 import hippo.scenarios.place_preference as PP
 from hippo.agent import Agent
@@ -401,20 +401,7 @@ def _pp_run(monkeypatch, tmp_path, argv: list[str], loaded: dict | None = None
     clock = iter(range(10, 10_000))
     monkeypatch.setattr(PP, "time", SimpleNamespace(perf_counter=lambda: float(next(clock))))
 
-    class _Progress:
-        def __init__(self, total: int, desc: str) -> None:
-            seen["progress"] = [total, desc]
-
-        def __enter__(self) -> _Progress:
-            return self
-
-        def __exit__(self, *exc: Any) -> None:
-            pass
-
-        def update(self, n: int = 1) -> None:
-            seen["progress"].append(n)
-
-    monkeypatch.setattr(PP, "Progress", _Progress)
+    monkeypatch.setattr(PP, "Progress", recording_progress(seen))
     if loaded is not None:
         def session(world, agent, log, obs):
             seen["session"] = (world, agent, obs)

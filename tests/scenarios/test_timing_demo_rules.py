@@ -15,6 +15,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 import pytest
+from stand_ins import recording_progress
 
 import hippo.scenarios.timing_demo as T
 from hippo.seeds import Seeds
@@ -318,20 +319,7 @@ def _run_timing(monkeypatch, tmp_path, argv: list[str], *, cells: Any = None,
         seen["repro"] = (list(delays), [list(w) for w in waits_all], reference, title)
         return _Fig("repro"), None
 
-    class _Progress:
-        def __init__(self, total: int, desc: str) -> None:
-            seen["progress"] = [total, desc]
-
-        def __enter__(self) -> _Progress:
-            return self
-
-        def __exit__(self, *exc: Any) -> None:
-            pass
-
-        def update(self, n: int = 1) -> None:
-            seen["progress"].append(n)
-
-    monkeypatch.setattr(T, "Progress", _Progress)
+    monkeypatch.setattr(T, "Progress", recording_progress(seen))
     if empty_rewarded:
         rewarded = _trace([], [], [], [], 7.0)
     monkeypatch.setattr(T, "_place_preference_trial", trial)

@@ -13,7 +13,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 import pytest
-from refusing_parser import Refused, RefusingParser
+from stand_ins import Refused, RefusingParser
 
 import hippo.scenarios.two_rooms as TR
 
