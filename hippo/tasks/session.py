@@ -16,6 +16,7 @@ The ground truth goes to the agent only when its place cells are the ground-trut
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -64,8 +65,10 @@ class Session:
         return float(self.obs.t)
 
     def ticks(self, seconds: float) -> int:
-        """Whole ticks in ``seconds`` (rounded down)."""
-        return int(seconds / self.world.dt)
+        """Whole ticks in ``seconds`` (rounded down; a quotient within 1e-9 of a whole number
+        is that number: 0.6 s at ``dt`` 0.2 is 3 ticks, though 0.6 / 0.2 is 2.9999999999999996
+        in floating point)."""
+        return math.floor(seconds / self.world.dt + 1e-9)
 
     def run(self, ticks: int | None = None, *, seconds: float | None = None,
             until: Callable[[Observation], bool] | None = None,

@@ -195,6 +195,16 @@ def test_seconds_are_whole_ticks_rounded_down():
     assert world.tick == 2
 
 
+def test_seconds_that_are_whole_ticks_are_not_lost_to_floating_point():
+    # 0.6 / 0.2 == 2.9999999999999996 and 9.2 / 0.2 == 45.99999999999999: those are 3 and 46
+    # ticks, not 2 and 45; a quotient short of a whole number by more than rounding stays down
+    world, _agent, s = _session()
+    assert 0.6 / world.dt < 3 and 9.2 / world.dt < 46
+    assert [s.ticks(x) for x in (0.6, 1.4, 9.2, 0.59, 0.7999)] == [3, 7, 46, 2, 3]
+    s.run(seconds=0.6)
+    assert world.tick == 3
+
+
 def test_run_refusals_word_for_word():
     world, _agent, s = _session()
     for kwargs in ({}, {"ticks": 3, "seconds": 1.0}):
