@@ -29,27 +29,23 @@ of the anti-aliasing window (``tick - delay``), as an offline resampler (ICANN09
 
 Exploration: the wall follower never switches side (``--rho 0``) and tours the whole maze again
 and again, like ICANN09's; side switches (``--rho 0.008``) leave parts unvisited for long.
-
 Ablation (ICANN09 §4): the same run without the reservoir, quadratic SFA on the 17 inputs.
 
 Whitening cutoff: ``--sfa-cutoff 2e-6`` by default (keeps ~200 of the 417 reservoir
-directions). At spectral radius 0.9 without a washout, 1e-6 had been chosen among 1e-4 ...
-1e-10 on seed 0 (seeds 0-9: 55.4 ± 1.5 localized units, 0.82 within-one-step decoding, against
-53.3 and 0.80 with SFA's general default 1e-8, which the unsupervised ``auto`` choice also
-picks). With the washout and spectral radius 0.99, tuning seeds 0-9 gave 59.1 units / 0.861
-decoding at 1e-6, 60.2 / 0.859 at 2e-6, 60.2 / 0.849 at 3e-6 (and 62.2 / 0.78 at 1e-5 on seeds
-0-3). ICANN09 gives no cutoff.
+directions). At spectral radius 0.9 without a washout, 1e-6 was chosen among 1e-4 ... 1e-10 on
+seed 0 (seeds 0-9: 55.4 ± 1.5 localized units, 0.82 within-one-step decoding; SFA's default
+1e-8, which ``auto`` also picks: 53.3 and 0.80). With the washout and spectral radius 0.99,
+tuning seeds 0-9: 59.1 units / 0.861 decoding at 1e-6, 60.2 / 0.859 at 2e-6, 60.2 / 0.849 at
+3e-6 (62.2 / 0.78 at 1e-5, seeds 0-3). ICANN09 gives no cutoff.
 
 Why the test part had fewer localized units than the training part (65.3 against 55.4, seeds
-0-9, before the washout): (1) the training part is 5 times longer, so a unit has 5 times more
-chances to reach 4.5: cut into windows as long as the test part, the training part gave 58.5
-(``localized_units_train_windows``); (2) the fit started from rest: ICA spent 4-5 of the 70
-units (seeds 0-3) on the start-up transient of the reservoir and the anti-aliasing filter
-(they reach 4.5 only in the first ~20 updates, never again), and 2-5 of them counted as
-"localized" on the training part. ``--washout auto`` (:meth:`RCSFAICAParams.transient_updates`:
-updates until the slowest linear mode of the reservoir has decayed to 1e-3) leaves the start
-out of the fit. SFA did not over-fit: decoding is about the same on both parts (seed 0: 0.83 on
-the training part, 0.84 on the test part).
+0-9, before the washout): (1) a unit of the 5 times longer training part has 5 times more
+chances to reach 4.5 (cut into windows as long as the test part: 58.5,
+``localized_units_train_windows``); (2) a fit from rest spent 4-5 of the 70 units (seeds 0-3)
+on the start-up transient of the reservoir and the anti-aliasing filter, 2-5 of them counted
+as "localized" on the training part. ``--washout auto`` (updates until the slowest linear mode
+of the reservoir has decayed to 1e-3, :meth:`RCSFAICAParams.transient_updates`) leaves the start
+out of the fit. SFA did not over-fit (seed 0: decoding 0.83 on the training part, 0.84 on test).
 
 Spectral radius: ``--spectral-radius 0.99`` (SMC09's value; ICANN09 used 0.9, "an arbitrarily
 chosen value"). With the washout, tuning seeds 0-9 gave 58.3 units and 0.83 within-one-step
@@ -88,10 +84,9 @@ from hippo.sim import arenas
 from hippo.sim.record import record
 
 TARGETS = {"localized_units": 60, "location_decoding_within_one_step_test": 0.85}  # issue 11
-#: the shortest recording, and the fewest reservoir samples after down-sampling
-MIN_TICKS, MIN_SAMPLES = 5000, 200
-#: the fewest training updates left after the washout
-MIN_FIT = 100
+#: the shortest recording, the fewest reservoir samples after down-sampling, and the fewest
+#: training updates left after the washout
+MIN_TICKS, MIN_SAMPLES, MIN_FIT = 5000, 200, 100
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -146,9 +141,16 @@ def _washout(text: str) -> int | str:
                                          ">= 0, or 'auto'") from None
 
 
+def _sizes(args: argparse.Namespace) -> tuple[int, int, int]:
+    """The ticks, neurons and units :func:`run` uses (``--quick``: at most 60,000, 100, 20)."""
+    if args.quick:
+        return min(args.ticks, 60_000), min(args.neurons, 100), min(args.units, 20)
+    return args.ticks, args.neurons, args.units
+
+
 def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
     """Checks across arguments, before any work."""
-    ticks, what = (min(args.ticks, 60_000), " (--quick)") if args.quick else (args.ticks, "")
+    (ticks, neurons, units), what = _sizes(args), " (--quick)" if args.quick else ""
     if ticks // args.downsample < MIN_SAMPLES:
         parser.error(f"argument --ticks: {ticks}{what} ticks down-sampled by {args.downsample} "
                      f"leave {ticks // args.downsample} samples; at least {MIN_SAMPLES} "
@@ -162,11 +164,12 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
         parser.error(f"argument --{opt}: a washout of {washout}{' (auto)' if auto else ''} "
                      f"leaves fewer than {MIN_FIT} of the {n_fit} training updates of {ticks}"
                      f"{what} ticks (a smaller --downsample or --washout, or more --ticks)")
-    if args.units > args.neurons + 17:
-        parser.error(f"argument --units: {args.units} exceeds the {args.neurons + 17} inputs "
+    capped = f" (--quick: {units} units of {neurons} neurons)" if args.quick else ""
+    if units > neurons + 17:
+        parser.error(f"argument --units: {units}{capped} exceeds the {neurons + 17} inputs "
                      "of SFA (--neurons + 17 rays)")
-    if args.ablation and args.units > 170:   # quadratic SFA on the 17 rays: 17 + 17 x 18 / 2
-        parser.error(f"argument --units: {args.units} exceeds the 170 inputs of the ablation's "
+    if args.ablation and units > 170:   # quadratic SFA on the 17 rays: 17 + 17 x 18 / 2
+        parser.error(f"argument --units: {units} exceeds the 170 inputs of the ablation's "
                      "SFA (the 17 rays, quadratic); fewer --units, or --no-ablation")
 
 
@@ -244,9 +247,7 @@ def _stats(values: list[float]) -> dict[str, Any]:
 def run(args: argparse.Namespace) -> dict:
     out = prepare_out(args.out)
     quick = bool(args.quick)
-    ticks = min(args.ticks, 60_000) if quick else args.ticks
-    neurons = min(args.neurons, 100) if quick else args.neurons
-    units = min(args.units, 20) if quick else args.units
+    ticks, neurons, units = _sizes(args)
     restarts = 1 if quick else args.ica_restarts
     f = args.downsample
     arena = arenas.maze_e1()

@@ -175,7 +175,8 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
     neurons, what = (QUICK_NEURONS, f" (--quick: {QUICK_NEURONS} neurons)") if quick else (
         args.neurons, "")
     if args.select:
-        check_sfa_inputs(parser, "--select-units", max(args.select_units), neurons, 0.0, what)
+        check_sfa_inputs(parser, "--select-units", max(args.select_units), neurons,
+                         args.slow_pool, what)
     # twice the inputs with the slow pool (its running mean is appended to the SFA input)
     check_sfa_inputs(parser, "--n-sfa", args.n_sfa, neurons, args.slow_pool, what)
     if args.slow_pool and (args.faults or args.leak_sweep):

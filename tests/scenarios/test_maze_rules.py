@@ -228,7 +228,14 @@ def test_the_units_against_the_ablations_inputs(capsys, auto):
     assert _refused(capsys, ["--units", "171"]) == (
         "argument --units: 171 exceeds the 170 inputs of the ablation's SFA (the 17 rays, "
         "quadratic); fewer --units, or --no-ablation")
-    assert _refused(capsys, ["--quick", "--units", "171"]).startswith("argument --units: 171 ")
+    # --quick fits 20 units of at most 100 neurons whatever --units and --neurons ask: it is
+    # those that must fit the inputs
+    assert _parse(["--quick", "--units", "171"]).units == 171
+    assert _parse(["--quick", "--neurons", "10", "--units", "30"]).units == 30
+    assert _parse(["--quick", "--neurons", "3", "--units", "30"]).units == 30
+    assert _refused(capsys, ["--quick", "--neurons", "2", "--units", "30"]) == (
+        "argument --units: 20 (--quick: 20 units of 2 neurons) exceeds the 19 inputs of SFA "
+        "(--neurons + 17 rays)")
     assert _parse(["--units", "171", "--no-ablation"]).units == 171
     # the reservoir's inputs are checked first
     assert _refused(capsys, ["--neurons", "10", "--units", "171"]) == (

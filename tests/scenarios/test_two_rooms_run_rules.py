@@ -91,6 +91,12 @@ def test_check_args_refusals_on_each_edge():
     _ok(["--select", "--select-units", "2,18", "--neurons", "10"])
     assert _refusal(["--select", "--select-units", "2,19", "--neurons", "10"]) == (
         "argument --select-units: 19 exceeds the 18 inputs of SFA (10 neurons + 8 sensors)")
+    # the selection's sweep appends the slow pool's running mean too (twice the inputs)
+    _ok(["--select", "--select-units", "2,36", "--neurons", "10", "--slow-pool", "5"])
+    assert _refusal(["--select", "--select-units", "2,37", "--neurons", "10",
+                     "--slow-pool", "5"]) == (
+        "argument --select-units: 37 exceeds the 36 inputs of SFA (10 neurons + 8 sensors, "
+        "twice that with the slow pool)")
     _ok(["--n-sfa", "18", "--n-ica", "1", "--neurons", "10"])
     assert _refusal(["--n-sfa", "19", "--n-ica", "1", "--neurons", "10"]) == (
         "argument --n-sfa: 19 exceeds the 18 inputs of SFA (10 neurons + 8 sensors)")
