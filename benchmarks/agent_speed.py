@@ -10,8 +10,8 @@ after the place cells are fitted and the map is learned (the place-preference se
 control), for learned and ground-truth place cells, on one BLAS thread; best of ``--rounds``
 rounds, wall time and process CPU time. Targets (issue 14): agent tick <= 2 x (world +
 wall-follower tick); the full closed loop (agent + world) >= 1,500 x real time.
-``--sectors 4`` measures the patrol's setting (each place state split by the direction of
-travel: 4 x the place inputs).
+``--sectors 4 --hop-time 5`` measures the patrol's setting (each place state split by the
+direction of travel: 4 x the place inputs; drives discounted by the learned time to a goal).
 """
 
 from __future__ import annotations
@@ -31,7 +31,8 @@ from hippo.sim import WallFollower, World, arenas
 from hippo.tasks import PLACE_STATES, make_places
 
 
-def setup(kind: str, seed: int = 0, sectors: int = 1) -> tuple[World, Agent, object]:
+def setup(kind: str, seed: int = 0, sectors: int = 1, hop_time: float | None = None
+          ) -> tuple[World, Agent, object]:
     arena = arenas.goal_arena()
     world = World(arena, seed=seed)
     ctrl = WallFollower(rng=seed)
@@ -41,8 +42,8 @@ def setup(kind: str, seed: int = 0, sectors: int = 1) -> tuple[World, Agent, obj
         obs = world.step(ctrl.act(obs))
         sensors.append(obs.ir)
     places = make_places(kind, arena, np.array(sensors), 24, seed, 32)
-    params = AgentParams(states=PLACE_STATES, planner=PlannerParams(exploration_threshold=0.3),
-                         heading_sectors=sectors)
+    params = AgentParams(states=PLACE_STATES, heading_sectors=sectors,
+                         planner=PlannerParams(exploration_threshold=0.3, hop_time=hop_time))
     agent = Agent(places, drives={"sound": DriveParams(epsilon=0.02)}, params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)
     for _ in range(2000):  # learn a map first
@@ -82,9 +83,9 @@ def one_round(agent_world, peer_world, ticks: int) -> dict[str, tuple[float, flo
              ("wall follower", t_ctrl))}
 
 
-def bench(kind: str, ticks: int, rounds: int, sectors: int = 1
+def bench(kind: str, ticks: int, rounds: int, sectors: int = 1, hop_time: float | None = None
           ) -> dict[str, tuple[float, float]]:
-    world, agent, obs = setup(kind, sectors=sectors)
+    world, agent, obs = setup(kind, sectors=sectors, hop_time=hop_time)
     pworld = World(arenas.goal_arena(), seed=1)
     peer = [pworld, WallFollower(rng=1), pworld.reset(1)]
     loop = [world, agent, obs]
@@ -103,11 +104,13 @@ def main() -> None:
     ap.add_argument("--profile", action="store_true")
     ap.add_argument("--sectors", type=int, default=1,
                     help="BrainParams.heading_sectors (the patrol's learned cells use 4)")
+    ap.add_argument("--hop-time", type=float, default=None,
+                    help="PlannerParams.hop_time (the patrol's: 5 s; default: per hop)")
     a = ap.parse_args()
     os.environ["HIPPO_QUIET"] = "1"
     with threadpool_limits(1):
         if a.profile:
-            world, agent, obs = setup("learned", sectors=a.sectors)
+            world, agent, obs = setup("learned", sectors=a.sectors, hop_time=a.hop_time)
             prof = cProfile.Profile()
             prof.enable()
             for _ in range(a.ticks):
@@ -119,7 +122,7 @@ def main() -> None:
         print(f"{'place cells':13s} {'agent':>13s} {'world':>13s} {'world+WF':>13s} "
               f"{'agent/(world+WF)':>17s} {'loop x real time':>17s}")
         for kind in ("learned", "ground-truth"):
-            b = bench(kind, a.ticks, a.rounds, a.sectors)
+            b = bench(kind, a.ticks, a.rounds, a.sectors, a.hop_time)
             ag, wo = b["agent"], b["world"]
             peer = tuple(x + y for x, y in zip(b["peer world"], b["wall follower"]))
             dt = 0.2

@@ -1,4 +1,5 @@
-"""The drive input of the transition map and the inferred moves' mask (the planner's inputs).
+"""The drive input of the transition map, the inferred moves' mask and the transitions' hop
+counts (the planner's inputs).
 
 HIREL's drive input (sec. II): ``I(n) = max_d level(d) · W_{d,n}``, a drive below the
 exploration threshold giving none; see :mod:`hippo.cognitive_map.planner`.
@@ -6,6 +7,8 @@ exploration threshold giving none; see :mod:`hippo.cognitive_map.planner`.
 
 from __future__ import annotations
 
+import math
+import weakref
 from collections.abc import Mapping
 from typing import Any
 
@@ -16,7 +19,7 @@ from hippo.cognitive_map.drives import Drives
 from hippo.cognitive_map.graph import TransitionGraph
 from hippo.cognitive_map.keys import as_transition
 
-__all__ = ["drive_input", "effective_levels", "inferred_mask"]
+__all__ = ["MIN_HOPS", "drive_input", "effective_levels", "hop_counts", "inferred_mask"]
 
 
 def inferred_mask(graph: TransitionGraph) -> np.ndarray:
@@ -24,6 +27,33 @@ def inferred_mask(graph: TransitionGraph) -> np.ndarray:
     nodes = graph.nx.nodes
     return np.fromiter((bool(nodes[t].get("inferred", False)) for t in graph.index().nodes),
                        dtype=bool, count=len(graph))
+
+
+#: the fewest hops a transition counts for with ``hop_time`` (a zero edge cost is no edge
+#: to the sparse shortest paths)
+MIN_HOPS = 0.01
+
+
+#: the last hop counts of each map: (its version, the hop time, the counts)
+_HOPS: weakref.WeakKeyDictionary[TransitionGraph, tuple[int, float, np.ndarray]] = (
+    weakref.WeakKeyDictionary())
+
+
+def hop_counts(graph: TransitionGraph, hop_time: float) -> np.ndarray:
+    """How many hops each transition ``graph.index().nodes[i]`` counts for when a hop stands
+    for ``hop_time`` seconds: ``max(δ / hop_time, MIN_HOPS)`` for a learned delay ``δ``, 1 for
+    a transition whose delay was never measured. Kept until the map changes (the planner
+    replans at every change of a drive level; the delays change only with the map)."""
+    kept = _HOPS.get(graph)
+    if kept is not None and kept[0] == graph.version and kept[1] == hop_time:
+        return kept[2]
+    nodes = graph.nx.nodes
+    d = np.fromiter((math.nan if nodes[t]["delay"] is None else nodes[t]["delay"]
+                     for t in graph.index().nodes), dtype=float, count=len(graph))
+    counts = np.where(np.isnan(d), 1.0, np.maximum(d / hop_time, MIN_HOPS))
+    counts.flags.writeable = False
+    _HOPS[graph] = (graph.version, hop_time, counts)
+    return counts
 
 
 def effective_levels(drives: Drives, threshold: float = 0.0) -> dict[str, float]:

@@ -17,6 +17,12 @@ i.e. ``act(n) = max_g I(g) · w^{h(n, g)}`` over goal transitions ``g`` reachabl
 ``h`` hops (``h = 0`` for ``g = n``): the strongest drive, discounted by distance, wins; it never
 exceeds the largest drive level, and a transition from which no goal is reachable gets 0.
 
+**Time, not hops** (``PlannerParams.hop_time``). Per hop, the discount counts the states a
+way crosses, and how many there are depends on the place code (a learned code with direction
+sectors has more per metre than another), while a stop on the way costs one hop whatever its
+wait. With a hop time ``τ`` a transition of learned delay ``δ`` passes on ``w^(δ/τ)`` instead
+of ``w``: ``act(n) = max_g I(g) · w^(T(n, g)/τ)``, ``T`` the learned time from ``n`` to the goal.
+
 **Fast form.** Taking ``−log`` turns it into shortest paths: ``cost(n) = −log act(n)``, edges cost
 ``L = −log w > 0`` on the reversed graph, and each goal ``g`` starts at ``c_g = −log I(g)``.
 Different start costs are handled by a virtual super-source joined to each goal by an edge of
@@ -50,7 +56,13 @@ import numpy as np
 from hippo._checks import check_fields, check_int, check_positive, check_range, check_seed
 from hippo.cognitive_map.drives import Drives
 from hippo.cognitive_map.graph import Transition, TransitionGraph, TransitionIndex
-from hippo.cognitive_map.inputs import drive_input, effective_levels, inferred_mask
+from hippo.cognitive_map.inputs import (
+    MIN_HOPS,
+    drive_input,
+    effective_levels,
+    hop_counts,
+    inferred_mask,
+)
 from hippo.cognitive_map.inputs import input_array as _input_array
 from hippo.cognitive_map.keys import as_transition
 from hippo.cognitive_map.shortest_paths import (
@@ -80,6 +92,11 @@ class PlannerParams:
     inferred_weight:       an inferred move (:meth:`TransitionGraph.infer_reverse`, never made)
                            passes on ``w · inferred_weight`` instead of ``w``: the planner takes
                            a way back it only inferred when it saves enough known steps.
+    hop_time:              seconds a hop stands for, or ``None`` (default: HIREL's ``w`` per
+                           hop). A transition with a learned delay ``δ`` then passes on
+                           ``w^(δ / hop_time)`` (at least ``w^0.01``; ``w`` while its delay is
+                           unmeasured): the activity falls with the time a way takes, stops on
+                           it included, not with the number of states it crosses.
     """
 
     w: float = 0.9
@@ -88,6 +105,7 @@ class PlannerParams:
     replan_tolerance: float = 1e-3
     method: Method = "states"
     inferred_weight: float = 0.8
+    hop_time: float | None = None
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -98,10 +116,15 @@ class PlannerParams:
         _check_method(self.method)
         check_range("PlannerParams.inferred_weight", self.inferred_weight, 0.0, 1.0,
                     closed="right")
+        _check_hop_time(self.hop_time)
 
 
 def _check_w(w: float) -> float:
     return check_range("propagation weight w", w, 0.0, 1.0, closed="neither")
+
+
+def _check_hop_time(hop_time: float | None) -> float | None:
+    return None if hop_time is None else check_positive("hop_time", hop_time)
 
 
 def _check_method(method: str) -> str:
@@ -153,10 +176,13 @@ def prepare(graph: TransitionGraph, method: Method = "states") -> None:
 
 
 def propagate(graph: TransitionGraph, inputs: Any, w: float = 0.9, *,
-              method: Method = "states", inferred_weight: float = 1.0) -> Activity:
+              method: Method = "states", inferred_weight: float = 1.0,
+              hop_time: float | None = None) -> Activity:
     """Fixed point of ``act(n) = max(I(n), w_n · max_{s ∈ succ(n)} act(s))`` over ``graph``.
 
-    ``w_n = w``, times ``inferred_weight`` for an inferred move ``n``. ``inputs`` is a
+    ``w_n = w`` (``w^(δ_n / hop_time)`` with a ``hop_time``, ``δ_n`` the learned delay of
+    ``n``: :func:`~hippo.cognitive_map.inputs.hop_counts`), times ``inferred_weight`` for an
+    inferred move ``n``. ``inputs`` is a
     :class:`Drives` (all levels count), a mapping transition → input, or an array aligned with
     ``graph.index().nodes``; inputs lie in [0, 1]. Runs one multi-source Dijkstra on ``−log``
     activities (see the module docstring); ``O(E log V)``.
@@ -164,13 +190,14 @@ def propagate(graph: TransitionGraph, inputs: Any, w: float = 0.9, *,
     w = _check_w(w)
     _check_method(method)
     f = check_range("inferred_weight", inferred_weight, 0.0, 1.0, closed="right")
+    hop_time = _check_hop_time(hop_time)
     idx = graph.index()
     inp = _input_array(graph, inputs)
     goals = np.flatnonzero(inp > 0)
     if len(goals) == 0:
         zeros = np.zeros(len(idx))
         return Activity(idx, zeros, inp, np.zeros(len(idx.states)) if method == "states" else None)
-    wn = np.full(len(idx), w)
+    wn = np.full(len(idx), w) if hop_time is None else w ** hop_counts(graph, hop_time)
     if f < 1.0:
         wn[inferred_mask(graph)] *= f
     edge_cost = -np.log(wn)  # per transition
@@ -193,16 +220,20 @@ def propagate(graph: TransitionGraph, inputs: Any, w: float = 0.9, *,
 
 
 def propagate_reference(graph: TransitionGraph | nx.DiGraph, inputs: Any, w: float = 0.9,
-                        inferred_weight: float = 1.0) -> dict[Transition, float]:
+                        inferred_weight: float = 1.0, hop_time: float | None = None
+                        ) -> dict[Transition, float]:
     """Pure-Python reference of the same sweep on the networkx graph (Bellman-Ford, FIFO list).
 
     Starts from ``act = I`` and, whenever ``act(s)`` grows, offers ``w · act(s)`` to every
-    predecessor of ``s`` (``w · inferred_weight`` to an inferred one) until nothing changes.
+    predecessor of ``s`` (``w · inferred_weight`` to an inferred one; with ``hop_time``,
+    ``w^(δ / hop_time)`` for a predecessor of learned delay ``δ``, at least ``w^MIN_HOPS``)
+    until nothing changes.
     ``inputs``: a :class:`Drives` (with a :class:`TransitionGraph`) or a mapping transition →
     input. Returns transition → activity.
     """
     w = _check_w(w)
     inferred_weight = check_range("inferred_weight", inferred_weight, 0.0, 1.0, closed="right")
+    hop_time = _check_hop_time(hop_time)
     if isinstance(graph, TransitionGraph):
         if isinstance(inputs, Drives):
             arr = drive_input(graph, inputs)
@@ -227,7 +258,9 @@ def propagate_reference(graph: TransitionGraph | nx.DiGraph, inputs: Any, w: flo
         s = queue.popleft()
         queued.discard(s)
         for p in pred[s]:
-            offer = w * act[s] * (inferred_weight if g.nodes[p].get("inferred") else 1.0)
+            delay = g.nodes[p].get("delay") if hop_time is not None else None
+            wp = w if delay is None else w ** max(delay / hop_time, MIN_HOPS)
+            offer = wp * act[s] * (inferred_weight if g.nodes[p].get("inferred") else 1.0)
             if offer > act[p]:
                 act[p] = offer
                 if p not in queued:
@@ -272,7 +305,10 @@ class Planner:
         # the same map and drives objects (by identity, not by id(): a restored snapshot
         # keeps its cache), unchanged in structure and goal links
         n_inferred = int(inferred_mask(graph).sum()) if p.inferred_weight < 1.0 else 0
-        key = (graph.structure_version, drives.links_version, n_inferred)
+        # the learned delays change at every repeat of a transition: with a hop time, every
+        # change of the map is one
+        version = graph.structure_version if p.hop_time is None else graph.version
+        key = (version, drives.links_version, n_inferred)
         same = self._refs is not None and self._refs[0] is graph and self._refs[1] is drives
         if (not force and self._activity is not None and same and key == self._key
                 and self._levels is not None and self._levels.keys() == levels.keys()
@@ -280,7 +316,7 @@ class Planner:
             return self._activity
         inp = drive_input(graph, drives, p.exploration_threshold)
         self._activity = propagate(graph, inp, p.w, method=p.method,
-                                   inferred_weight=p.inferred_weight)
+                                   inferred_weight=p.inferred_weight, hop_time=p.hop_time)
         self._key, self._levels = key, levels
         self._refs = (graph, drives)
         self.n_propagations += 1

@@ -29,13 +29,19 @@ from hippo.tasks.patrol import PatrolCourse, PatrolPhase
 from hippo.tasks.patrol_sets import _arena, checked_route, tour_of_side
 from hippo.tasks.session import Session
 
-__all__ = ["LEARNED_SECTORS", "Lesson", "teach_patrol"]
+__all__ = ["LEARNED_SECTORS", "PATROL_HOP_TIME", "Lesson", "teach_patrol"]
 
 #: learned place states are split by the direction of travel into 4 sectors (the rooms of
 #: two-rooms look the same turned round: docs/results.md); ground-truth fields do not alias,
 #: and 4 sectors did not help them (tuning seeds: two-rooms 332/376 -> 341/382, goal-arena
 #: 179/193 -> 178/193, course 340/340 either way)
 LEARNED_SECTORS = 4
+#: the patrol's drives are discounted by the learned time to a checkpoint, one hop per 5 s
+#: (``PlannerParams.hop_time``; about a place's median stay), not per state crossed: per hop,
+#: the way on through a stop at a low-drive checkpoint counted the wait as one hop, and a kidnap
+#: stopped there (tuning seeds, kidnap choice: course 16-75 56/60 -> 59/60, goal-arena 0-23
+#: 16/24 -> 23/24, two-rooms 22/24 either way; docs/results.md)
+PATROL_HOP_TIME = 5.0
 
 
 @dataclass
@@ -109,7 +115,8 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
     # stop is chosen from the place code's memory of where it was carried from (kidnap,
     # tuning seeds 0-9: 9/10 with it, 6/10 with the fixed 6 s settling)
     params = AgentParams(states=PLACE_STATES, relocalise=LocaliserParams(),
-                         planner=PlannerParams(w=0.9, noise=0.0, exploration_threshold=0.05),
+                         planner=PlannerParams(w=0.9, noise=0.0, exploration_threshold=0.05,
+                                               hop_time=PATROL_HOP_TIME),
                          wall_side=side, heading_sectors=sectors)
     agent = Agent(cells, drives=dict.fromkeys(names, drive), params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)
