@@ -871,8 +871,8 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
     ("hippo/tasks/lesson.py", r"need, why = \(p.min_fit_ticks \+ p.washout - 1\)",
      r"\(p.min_fit_ticks - p.washout - 1\)", "equivalent: the learned place cells' model "
      "(place_model) has washout 0, so + and - washout need the same ticks"),
-    ("hippo/tasks/lesson.py", r"PlannerParams\(w=0.9, noise=0.0, exploration_threshold=0.05\)",
-     r"PlannerParams\(w=0.9, noise=0.0, \)", "equivalent: 0.05 is PlannerParams' default "
+    ("hippo/tasks/lesson.py", r"PlannerParams\(w=0.9, noise=0.0, exploration_threshold=0.05,",
+     r"PlannerParams\(w=0.9, noise=0.0, hop_time", "equivalent: 0.05 is PlannerParams' default "
      "exploration_threshold"),
     ("hippo/tasks/explore.py", r"if pause_rate > 0 and rng.random\(\) < pause_rate:",
      r"if pause_rate >= 0 and", "equivalent: with no pauses the draw, random() < 0, is never "

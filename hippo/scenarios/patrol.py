@@ -164,6 +164,8 @@ def run(args: argparse.Namespace) -> dict:
         "quick": smoke_test(args),
         "place_units": places.n_units,
         "heading_sectors": int(agent.p.heading_sectors),
+        # the drives' discount: seconds per hop, None per state crossed (a robot saved before)
+        "planner_hop_time": agent.p.planner.hop_time,
         "reanchor": getattr(places, "relocaliser", None) is not None,
         "loaded_from": str(args.load) if getattr(args, "load", None) is not None else None,
         # signed laps along the route (negative: run backwards), rounded off at 1e-9

@@ -61,7 +61,8 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
                  waits: Sequence[float], *, seed: int = 0, route: str = "auto",
                  place_cells: str = "learned", explore_min: float = 30.0, units: int = 24,
                  places: int = 40, heading_sectors: int | None = None,
-                 reanchor: bool = False, side: int | None = None) -> Lesson:
+                 reanchor: bool = False, side: int | None = None,
+                 hop_time: float | None = PATROL_HOP_TIME) -> Lesson:
     """Explore ``arena`` (a built-in arena's name or an :class:`Arena` of one's own) for
     ``explore_min`` simulated minutes, fit the place cells (``units`` ICA units, ``places``
     prototypes; or ground-truth fields), build the patrol robot and teach it ``waits`` (s) at
@@ -73,7 +74,9 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
     :func:`~hippo.tasks.explore.wall_side`'s probe, which takes the wall outside the route's
     loop where its follower goes round: in rings built with ``ArenaBuilder`` the inner wall's
     follower crossed the corridor and ran backwards; where the patrol runs its loop backwards
-    or misses most stops, give the other side). On a wall tour the robot is led (and its
+    or misses most stops, give the other side). ``hop_time`` (s) discounts the drives by the
+    learned time to a checkpoint (:data:`PATROL_HOP_TIME`; ``None``: HIREL's ``w`` per state
+    crossed, ``PlannerParams.hop_time``). On a wall tour the robot is led (and its
     passes counted) along the tour of the wall it follows, where that tour passes every
     checkpoint (:func:`~hippo.tasks.patrol_sets.tour_of_side`). The checkpoints and waits are
     checked first
@@ -84,6 +87,7 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
     if place_cells not in ("learned", "ground-truth"):
         raise ValueError(f"place_cells must be 'learned' or 'ground-truth', got {place_cells!r}")
     check_wall_side("side", side, none_ok=True)
+    planner = PlannerParams(w=0.9, noise=0.0, exploration_threshold=0.05, hop_time=hop_time)
     if not 0.1 <= check_real("explore_min", explore_min) <= 1e4:
         raise ValueError(f"explore_min must be 0.1 to 10,000 simulated minutes, got "
                          f"{explore_min!r}")
@@ -115,8 +119,7 @@ def teach_patrol(arena: str | Arena, checkpoints: Sequence[Sequence[float]],
     # stop is chosen from the place code's memory of where it was carried from (kidnap,
     # tuning seeds 0-9: 9/10 with it, 6/10 with the fixed 6 s settling)
     params = AgentParams(states=PLACE_STATES, relocalise=LocaliserParams(),
-                         planner=PlannerParams(w=0.9, noise=0.0, exploration_threshold=0.05,
-                                               hop_time=PATROL_HOP_TIME),
+                         planner=planner,
                          wall_side=side, heading_sectors=sectors)
     agent = Agent(cells, drives=dict.fromkeys(names, drive), params=params,
                   sensors=world.sensors, robot=world.robot, seed=seed)

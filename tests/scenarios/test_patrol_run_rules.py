@@ -162,7 +162,8 @@ def _stand_ins(monkeypatch, tmp_path: Path, **over: Any) -> tuple[argparse.Names
     session = SimpleNamespace(obs=SimpleNamespace(t=500.0), save=save)
     agent = SimpleNamespace(
         places=SimpleNamespace(n_units=12, relocaliser=None),
-        p=SimpleNamespace(wall_side=np.int64(-1), heading_sectors=np.int64(4)),
+        p=SimpleNamespace(wall_side=np.int64(-1), heading_sectors=np.int64(4),
+                          planner=SimpleNamespace(hop_time=5.0)),
         layer=SimpleNamespace(n_states=17), graph=[1, 2, 3, 4])
     lesson = SimpleNamespace(world=SimpleNamespace(robot=SimpleNamespace(moving_threshold=0.75)),
                              agent=agent, session=session, course=course, reproduced=1 / 3,
@@ -260,6 +261,7 @@ def test_run_reports_the_stand_ins_numbers(monkeypatch, tmp_path, capsys):
     assert m["wall_side"] == -1 and type(m["wall_side"]) is int
     assert m["waits_s"] == [10.0, 20.0, 30.0] and m["loops"] == 4 and m["quick"] is False
     assert m["place_units"] == 12 and m["heading_sectors"] == 4
+    assert m["planner_hop_time"] == 5.0          # the drives' discount the robot plans with
     assert type(m["heading_sectors"]) is int
     assert m["reanchor"] is False and m["loaded_from"] is None
     assert m["reproduced_loop_fraction"] == 0.333333333 and m["loops_completed"] == 1.5

@@ -39,6 +39,8 @@ def test_the_refusals_word_for_word():
     assert _refused(side=2) == "side must be -1 (right wall), +1 (left wall) or None, got 2"
     assert _refused(side=1.0) == "side must be -1 (right wall), +1 (left wall) or None, got 1.0"
     assert _refused(side=True) == "side must be -1 (right wall), +1 (left wall) or None, got True"
+    for v in (0.0, -5.0, float("nan")):   # before any work, as every other refusal here
+        assert "hop_time must be" in _refused(hop_time=v)
     for v in (0.0999, 10000.001):
         assert _refused(explore_min=v) == (f"explore_min must be 0.1 to 10,000 simulated "
                                            f"minutes, got {v!r}")
@@ -171,6 +173,8 @@ def test_the_recipe_hands_each_part_what_it_needs(monkeypatch):
     assert p.brain.states == ex.PLACE_STATES and p.brain.relocalise == LocaliserParams()
     assert (p.brain.planner.w, p.brain.planner.noise, p.brain.planner.exploration_threshold) \
         == (0.9, 0.0, 0.05)
+    # the drives discounted by the learned time to a checkpoint, 5 s a hop
+    assert p.brain.planner.hop_time == L.PATROL_HOP_TIME == 5.0
     assert (p.motor.wall_side, p.brain.heading_sectors) == (1, L.LEARNED_SECTORS) == (1, 4)
     (w, agent, slog), kw = rec.calls["session"]
     assert w is world and agent is lesson.agent and slog is log
@@ -204,8 +208,19 @@ def test_the_recipe_with_a_side_given_ground_truth_and_reanchoring(monkeypatch):
     np.testing.assert_array_equal(kw["moving"], rec.tour.moving)
     p = rec.calls["agent"][1]["params"]
     assert (p.motor.wall_side, p.brain.heading_sectors) == (-1, 1)   # one sector for fields
+    assert p.brain.planner.hop_time == L.PATROL_HOP_TIME
     assert rec.calls["course"][1] == {"tour": False}
     assert lesson.taught_stops == [None, None] and lesson.route_kind == "shortest"
+
+
+def test_the_drives_discount_per_hop_or_per_time_as_asked(monkeypatch):
+    rec = _Recorder(monkeypatch)
+    L.teach_patrol("goal-arena", CPS[:2], WAITS[:2], place_cells="ground-truth",
+                   side=-1, explore_min=0.1, hop_time=None)     # HIREL's w per state crossed
+    assert rec.calls["agent"][1]["params"].brain.planner.hop_time is None
+    L.teach_patrol("goal-arena", CPS[:2], WAITS[:2], place_cells="ground-truth",
+                   side=-1, explore_min=0.1, hop_time=2.5)
+    assert rec.calls["agent"][1]["params"].brain.planner.hop_time == 2.5
 
 
 def test_the_bounds_on_their_edges_are_taken(monkeypatch):
