@@ -130,6 +130,15 @@ def test_a_new_delay_replans_with_a_hop_time_and_not_without():
     assert hops.n_propagations == 1   # the structure did not change: per hop, nothing to redo
 
 
+def test_the_refusal_names_the_hop_time_word_for_word():
+    for bad in (0.0, -1.0):
+        for call in (lambda b: propagate(chain([1.0]), {(0, 1): 1.0}, hop_time=b),
+                     lambda b: propagate_reference(chain([1.0]), {(0, 1): 1.0}, hop_time=b)):
+            with pytest.raises(ValueError) as e:
+                call(bad)
+            assert str(e.value) == f"hop_time must be finite and > 0, got {bad}"
+
+
 @pytest.mark.parametrize("bad", [0.0, -1.0, math.nan, math.inf, "5", True])
 def test_impossible_hop_times_are_refused(bad):
     with pytest.raises((ValueError, TypeError), match="hop_time"):
