@@ -1128,8 +1128,6 @@ EXCLUDED: list[tuple[str, str, str, str]] = [
      "equivalent: a zone's colour defaults to 1"),
     ("hippo/sim/arenas.py", r"for (i|j) in range\(n \+ 1\):", r"range\(n \+ 2\)",
      "equivalent: the step past the grid's end finds no wall (i < n fails) and no run open"),
-    ("hippo/scenarios/two_rooms.py", r'"--select-units", max\(args.select_units\), neurons, 0.0',
-     r"neurons, None, what\)", "equivalent: check_sfa_inputs tests slow_pool for truth"),
     ("hippo/scenarios/two_rooms.py", r'"smc09": \(SMC09_UNITS,\) \* 2\}', r"\* 3\}",
      "equivalent: only a configuration's units[0] and units[1] are read"),
     ("hippo/scenarios/patrol.py", r'def route_note\(route: Route, kind: str = "shortest"\)',

@@ -162,6 +162,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="write PNGs")
 
 
+def _neurons(args: argparse.Namespace) -> int:
+    """The reservoir size :func:`run` builds: ``--quick`` caps it at :data:`QUICK_NEURONS`."""
+    return min(args.neurons, QUICK_NEURONS) if getattr(args, "quick", False) else args.neurons
+
+
 def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
     """Checks across arguments, before any work."""
     check_leak_groups(args, parser)
@@ -170,10 +175,8 @@ def check_args(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Non
                      "(ICA rotates the SFA outputs)")
     only_with(args, parser, "select_units", "select", "the unit counts it chooses among")
     only_with(args, parser, "select_criterion", "select", "the criterion it chooses by")
-    # the reservoir run() builds: --quick caps it at QUICK_NEURONS
-    quick = bool(getattr(args, "quick", False)) and args.neurons > QUICK_NEURONS
-    neurons, what = (QUICK_NEURONS, f" (--quick: {QUICK_NEURONS} neurons)") if quick else (
-        args.neurons, "")
+    neurons = _neurons(args)   # the reservoir run() builds
+    what = f" (--quick: {neurons} neurons)" if neurons != args.neurons else ""
     if args.select:
         check_sfa_inputs(parser, "--select-units", max(args.select_units), neurons,
                          args.slow_pool, what)
@@ -196,7 +199,7 @@ def run(args: argparse.Namespace) -> dict:
     out = prepare_out(args.out)
     quick = bool(args.quick)
     ticks = min(args.ticks, 8000) if quick else args.ticks
-    neurons = min(args.neurons, QUICK_NEURONS) if quick else args.neurons
+    neurons = _neurons(args)
     restarts = min(args.ica_restarts, 3) if quick else args.ica_restarts
     arena = arenas.two_rooms()
     seeds = seed_list(args)
